@@ -1,0 +1,53 @@
+// stochtex — float images and colour-managed image I/O.
+//
+// Colour spaces (see docs/colour.md):
+//   * input:    what the file says (OIIO's "oiio:ColorSpace"), else sRGB; overridable.
+//   * analysis: scene-linear Rec.709 primaries ("linear" in OIIO/OCIO terms). Means and MIP
+//               averages are physically right only in linear light, so statistics live there.
+//   * output:   EXR/TIFF/HDR keep scene-linear values; PNG/JPEG are display-encoded (sRGB).
+// Conversions go through OIIO's ColorConfig, i.e. OpenColorIO.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace stochtex {
+
+/// A dense float image, interleaved channels, rows top to bottom.
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> pixels;
+
+    Image() = default;
+    Image(int w, int h, int c) : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c, 0.0f) {}
+
+    float& at(int x, int y, int c) { return pixels[(std::size_t(y) * width + x) * channels + c]; }
+    float at(int x, int y, int c) const { return pixels[(std::size_t(y) * width + x) * channels + c]; }
+    std::size_t pixel_count() const { return std::size_t(width) * height; }
+    bool empty() const { return pixels.empty(); }
+
+    /// One channel as a contiguous plane (width*height floats).
+    std::vector<float> channel(int c) const;
+};
+
+struct ImageReadOptions {
+    /// Colour space the file's values are encoded in; empty = what the file says, else "sRGB".
+    std::string input_colour_space;
+};
+
+/// Reads any OIIO-readable image as scene-linear RGB (grey is replicated, alpha dropped).
+/// Throws Error naming the file for: missing/unreadable file, truncated data, images smaller
+/// than min_size in either dimension, and non-finite pixel values.
+Image read_image_linear(const std::string& path, const ImageReadOptions& options = {}, int min_size = 16);
+
+/// Writes scene-linear RGB: float EXR (and other float formats) stay linear; 8/16-bit formats
+/// (PNG, JPEG, TIFF by extension) are encoded to sRGB. Throws Error on failure.
+void write_image(const std::string& path, const Image& linear_rgb);
+
+/// Converts between colour spaces known to OCIO/OIIO (e.g. "linear", "sRGB"), in place.
+void convert_colour_space(Image& image, const std::string& from, const std::string& to);
+
+}  // namespace stochtex

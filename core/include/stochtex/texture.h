@@ -1,0 +1,41 @@
+// stochtex — a procedural texture ready to evaluate.
+//
+// Built once from a TextureDescription (which is validated), then evaluated from any number of
+// threads: every method is const and a pure function of (description, point, footprint), so
+// the same seed always gives bit-identical values whatever the thread count.
+#pragma once
+
+#include <stochtex/footprint.h>
+#include <stochtex/texture_description.h>
+
+#include <array>
+#include <memory>
+
+namespace stochtex {
+
+using Rgb = std::array<float, 3>;
+
+class Texture {
+public:
+    virtual ~Texture() = default;
+
+    /// Filtered 2D value at (u, v) in texture units; the footprint is the pixel's Jacobian.
+    virtual Rgb eval(const Vec2& uv, const Footprint2D& footprint) const = 0;
+    /// Filtered solid (3D) value at a surface point.
+    virtual Rgb eval_solid(const SurfacePoint& point) const = 0;
+    /// The texture's expected value: what infinite minification converges to.
+    virtual Rgb mean() const = 0;
+
+    const TextureDescription& description() const { return description_; }
+
+protected:
+    explicit Texture(TextureDescription description) : description_(std::move(description)) {}
+
+private:
+    TextureDescription description_;
+};
+
+/// Creates the model named by description.model. Throws Error if the description is invalid.
+std::unique_ptr<Texture> make_texture(const TextureDescription& description);
+
+}  // namespace stochtex

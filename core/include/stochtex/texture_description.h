@@ -1,0 +1,87 @@
+// stochtex — the texture description: everything a .stex file holds, in memory.
+//
+// A description is model-independent data (colour, histograms, seed, scale, provenance) plus
+// exactly one model's parameters. The file format is documented in docs/stex-format.md; the
+// reader (stex_file.h) validates every field, so a TextureDescription obtained from a file is
+// always usable by make_texture().
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace stochtex {
+
+/// How colour is modelled (paper 000, §6 and Fig. 7).
+enum class ColourMode {
+    pca,         ///< decorrelated channels (principal axes of the RGB covariance) — the default
+    rgb,         ///< R, G, B synthesised independently with different offsets (Fig. 7b)
+    rgb_shared,  ///< R, G, B with the same offsets: perfectly correlated channels (Fig. 7c)
+};
+const char* to_string(ColourMode mode);
+ColourMode colour_mode_from_string(const std::string& name);  // throws Error
+
+/// A monotone map from a standard-normal variate z to a channel value: the channel's inverse
+/// CDF composed with the normal CDF, Q(Φ(z)), as a monotone cubic (Fritsch–Carlson) through the
+/// knots. Outside [z.front(), z.back()] the end values hold (no extrapolation).
+/// An empty map means "no histogram matching": the channel stays Gaussian.
+struct HistogramMap {
+    std::vector<double> z;      ///< strictly increasing knot positions, symmetric about 0
+    std::vector<double> value;  ///< non-decreasing channel values at the knots
+    bool enabled() const { return !z.empty(); }
+};
+
+/// Multiresolution wavelet noise by example (paper 000).
+struct WaveletParameters {
+    /// band_weights[c][j]: weight of band j for channel c. Band j = 0 is the finest: its
+    /// frequencies lie in [1/4, 1/2) cycles per exemplar pixel; band j covers [2^-(j+2), 2^-(j+1)).
+    std::array<std::vector<double>, 3> band_weights;
+};
+
+/// Where a description came from: enough to reproduce the analysis.
+struct Provenance {
+    std::string source;              ///< file name of the photo (no directories)
+    int source_width = 0;
+    int source_height = 0;
+    std::string input_colour_space;  ///< colour space the photo was decoded from
+    std::string tool;                ///< "stochtex <version>"
+    /// Analysis options as name/value strings, in a fixed order (kept for round-trip identity).
+    std::vector<std::pair<std::string, std::string>> options;
+};
+
+struct TextureDescription {
+    static constexpr int current_version = 1;
+
+    int version = current_version;
+    std::string model;  ///< one of known_models()
+    std::uint32_t seed = 1;
+
+    /// Exemplar pixels per texture unit: a render at units_per_pixel = 1/pixels_per_unit shows
+    /// the texture at the photo's own pixel scale.
+    double pixels_per_unit = 512;
+    /// Physical size of one texture unit in metres (for scenes); informational for the core.
+    double unit_size_m = 1.0;
+
+    // Colour (scene-linear Rec.709). rgb = mean + basis · y, y the decorrelated channels.
+    std::string colour_space = "lin_rec709";
+    ColourMode colour_mode = ColourMode::pca;
+    std::array<double, 3> mean{0, 0, 0};
+    /// basis[row][col]; column c is the RGB direction of decorrelated channel c. Orthonormal,
+    /// det +1, columns sorted by decreasing variance (identity in the RGB modes).
+    std::array<std::array<double, 3>, 3> basis{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    /// Per decorrelated channel; each may be disabled (empty).
+    std::array<HistogramMap, 3> histograms;
+
+    Provenance provenance;
+
+    // Model parameters: exactly the one named by `model` is set.
+    std::optional<WaveletParameters> wavelet;
+};
+
+/// Model names accepted in .stex files and by `stex analyze --model`.
+const std::vector<std::string>& known_models();
+
+}  // namespace stochtex

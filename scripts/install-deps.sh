@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package stochtex needs to build, test and run its demo.
+# Idempotent; run as root on a fresh Debian 12 machine.  Usage: scripts/install-deps.sh [--with-blender]
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git
+  libopenimageio-dev openimageio-tools python3-openimageio
+  libopenexr-dev libimath-dev libopencolorio-dev
+  libeigen3-dev libfftw3-dev
+  libhwy-dev libtbb-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  povray python3-numpy
+)
+if [ "${1:-}" = "--with-blender" ]; then packages+=(blender); fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages (${missing[*]}); run this script as root" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: installed ${missing[*]}"

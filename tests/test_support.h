@@ -1,0 +1,15 @@
+// Shared helpers for the tests: where the exemplars are, temporary files.
+#pragma once
+
+#include <string>
+
+namespace stochtex::test {
+
+/// ../shared/exemplars/<name> if that folder exists, else "" (the caller GTEST_SKIPs).
+std::string shared_exemplar(const std::string& name);
+/// The small exemplar committed to the repository (data/exemplars/<name>).
+std::string repo_exemplar(const std::string& name);
+/// A fresh, empty directory for this test's files.
+std::string temp_dir(const std::string& test_name);
+
+}  // namespace stochtex::test
