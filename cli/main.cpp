@@ -1,1 +1,88 @@
-int main(){return 0;}
+// stex — the stochtex command-line tool. See `stex --help` and README.md.
+#include "commands.h"
+
+#include <stochtex/error.h>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv)
+{
+    using namespace stex_cli;
+    CLI::App app{"stex — procedural textures by example (stochtex " STOCHTEX_VERSION ")"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "stochtex " STOCHTEX_VERSION);
+
+    AnalyzeCommand analyze;
+    auto* a = app.add_subcommand("analyze", "Analyse a texture photo into a .stex procedural texture");
+    a->add_option("photo", analyze.photo, "Photo of a stochastic texture (any format OpenImageIO reads)")->required();
+    a->add_option("-o,--output", analyze.output, "Output .stex file")->required();
+    a->add_option("--model", analyze.model, "Texture model")->check(CLI::IsMember({"wavelet"}))->capture_default_str();
+    a->add_option("--colour", analyze.colour, "Colour mode: pca (decorrelated), rgb (independent), rgb-shared")
+        ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))->capture_default_str();
+    a->add_option("--histogram", analyze.histogram,
+                  "Histogram matching: on, off, or auto (per channel, when it brings the histogram measurably closer)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
+    a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
+    a->add_option("--psd", analyze.psd, "Power spectrum estimator: periodic-smooth (no edge leak) or periodic (paper)")
+        ->check(CLI::IsMember({"periodic-smooth", "periodic"}))->capture_default_str();
+    a->add_option("--bands", analyze.bands, "Keep at most N finest bands (0: all the photo supports)")
+        ->check(CLI::Range(0, 24))->capture_default_str();
+    a->add_option("--seed", analyze.seed, "Seed stored in the texture")->capture_default_str();
+    a->add_option("--colourspace,--colorspace", analyze.colour_space,
+                  "Colour space of the photo's values (default: what the file says, else sRGB)");
+    a->add_option("--unit-size", analyze.unit_size_m, "Physical width of the photo in metres (for scenes)")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+
+    RenderCommand render;
+    auto* r = app.add_subcommand("render", "Render a .stex texture to an image (EXR: scene-linear; PNG/JPEG: sRGB)");
+    r->add_option("texture", render.texture, ".stex file")->required();
+    r->add_option("-o,--output", render.output, "Output image (.exr, .png, .jpg, .tif)")->required();
+    r->add_option("--size", render.size, "Output size WxH (default: the analysed photo's size)");
+    r->add_option("--scale", render.scale, "Exemplar pixels per output pixel (2: zoomed out ×2)")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    r->add_option("--u", render.origin_u, "Texture-space u of the image's left edge (texture units)")->capture_default_str();
+    r->add_option("--v", render.origin_v, "Texture-space v of the image's top edge (texture units)")->capture_default_str();
+    r->add_flag("--solid", render.solid, "Evaluate the solid (3D) texture on the plane w = Z");
+    r->add_option("--z", render.z, "Depth of the solid slice (texture units)")->capture_default_str();
+    r->add_flag("--no-filter", render.no_filter, "Point-sample instead of filtering each pixel's footprint");
+    r->add_option("--threads", render.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    r->add_option("--seed", render.seed, "Override the texture's seed")->check(CLI::NonNegativeNumber);
+
+    InfoCommand info;
+    auto* i = app.add_subcommand("info", "Print a .stex texture's parameters and statistics");
+    i->add_option("texture", info.texture, ".stex file")->required();
+
+    CompareCommand compare;
+    auto* c = app.add_subcommand("compare", "Compare a photo with a texture: metrics, and a side-by-side figure");
+    c->add_option("photo", compare.photo, "The photo")->required();
+    c->add_option("texture", compare.texture, ".stex file")->required();
+    c->add_option("-o,--output", compare.output, "Side-by-side PNG: photo, synthesis, their PSDs and histograms");
+    c->add_option("--colourspace,--colorspace", compare.colour_space, "Colour space of the photo's values");
+
+    MorphCommand morph;
+    auto* m = app.add_subcommand("morph", "Interpolate two textures of the same model");
+    m->add_option("a", morph.a, "Texture at t = 0")->required();
+    m->add_option("b", morph.b, "Texture at t = 1")->required();
+    m->add_option("--t", morph.t, "Interpolation parameter in [0, 1]")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    m->add_option("-o,--output", morph.output, "Output .stex file")->required();
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        if (*a) return analyze.run();
+        if (*r) return render.run();
+        if (*i) return info.run();
+        if (*c) return compare.run();
+        if (*m) return morph.run();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "stex: error: %s\n", e.what());
+        return 1;
+    }
+    return 2;
+}

@@ -1,1 +1,118 @@
-// placeholder
+#include <stochtex/error.h>
+#include <stochtex/image.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+
+namespace stochtex {
+
+namespace {
+
+std::string lower(std::string s)
+{
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+bool is_scene_linear(const std::string& colour_space)
+{
+    const std::string name = lower(colour_space);
+    return name == "linear" || name == "scene_linear" || name == "lin_rec709" || name == "lin_srgb" ||
+           name == "linear rec.709 (srgb)";
+}
+
+/// Float formats keep scene-linear values; integer formats are display-encoded.
+bool is_float_format(const std::string& path)
+{
+    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+}
+
+}  // namespace
+
+std::vector<float> Image::channel(int c) const
+{
+    std::vector<float> plane(pixel_count());
+    for (std::size_t i = 0; i < plane.size(); ++i) plane[i] = pixels[i * channels + c];
+    return plane;
+}
+
+void convert_colour_space(Image& image, const std::string& from, const std::string& to)
+{
+    if (from == to || (is_scene_linear(from) && is_scene_linear(to))) return;
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf buffer(spec, image.pixels.data());
+    const std::string source = is_scene_linear(from) ? "linear" : from;
+    const std::string target = is_scene_linear(to) ? "linear" : to;
+    if (!OIIO::ImageBufAlgo::colorconvert(buffer, buffer, source, target))
+        throw Error("cannot convert colours from '" + from + "' to '" + to + "': " + buffer.geterror());
+}
+
+Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size)
+{
+    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) throw Error(path + ": cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec spec = input->spec();
+    if (spec.width < min_size || spec.height < min_size)
+        throw Error(path + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    ", too small (at least " + std::to_string(min_size) + "x" + std::to_string(min_size) + ")");
+    const int channels = spec.nchannels;
+    std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
+    input->close();
+
+    Image image(spec.width, spec.height, 3);
+    const int alpha = spec.alpha_channel;
+    const int colour_channels = (alpha >= 0 && alpha < 3) ? alpha : std::min(channels, 3);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            // Grey (and grey + alpha) is replicated; alpha and extra channels are dropped.
+            const float value = data[i * channels + (colour_channels >= 3 ? c : 0)];
+            if (!std::isfinite(value))
+                throw Error(path + ": pixel (" + std::to_string(i % spec.width) + ", " +
+                            std::to_string(i / spec.width) + ") channel " + std::to_string(c) +
+                            " is not a finite number");
+            image.pixels[i * 3 + c] = value;
+        }
+
+    std::string colour_space = options.input_colour_space;
+    if (colour_space.empty()) colour_space = spec.get_string_attribute("oiio:ColorSpace", "sRGB");
+    try {
+        convert_colour_space(image, colour_space, "linear");
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+    }
+    return image;
+}
+
+void write_image(const std::string& path, const Image& linear_rgb)
+{
+    if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    const bool linear = is_float_format(path);
+    OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
+    Image encoded;
+    const Image* source = &linear_rgb;
+    if (!linear) {
+        encoded = linear_rgb;
+        convert_colour_space(encoded, "linear", "sRGB");
+        for (float& v : encoded.pixels) v = std::clamp(v, 0.0f, 1.0f);
+        source = &encoded;
+    }
+    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
+        !output->close())
+        throw Error(path + ": cannot write image: " + output->geterror());
+}
+
+}  // namespace stochtex

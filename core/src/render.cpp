@@ -1,1 +1,90 @@
-// placeholder
+#include <stochtex/error.h>
+#include <stochtex/render.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace stochtex {
+
+void render_region(const Texture& texture, const RenderSettings& settings, int x0, int y0, int w, int h, float* rgb)
+{
+    const double step = settings.units_per_pixel;
+    const double footprint = settings.filter ? step : 0.0;
+    const Footprint2D footprint_2d = Footprint2D::square(footprint);
+    for (int y = 0; y < h; ++y) {
+        const double v = settings.origin_v + (y0 + y + 0.5) * step;
+        float* row = rgb + std::size_t(y) * w * 3;
+        for (int x = 0; x < w; ++x) {
+            const double u = settings.origin_u + (x0 + x + 0.5) * step;
+            Rgb value;
+            if (settings.solid) {
+                SurfacePoint point;
+                point.p = {u, v, settings.z};
+                point.dpdx = {footprint, 0, 0};
+                point.dpdy = {0, footprint, 0};
+                value = texture.eval_solid(point);
+            } else {
+                value = texture.eval({u, v}, footprint_2d);
+            }
+            std::copy(value.begin(), value.end(), row + 3 * x);
+        }
+    }
+}
+
+Image render(const Texture& texture, const RenderSettings& settings, const ProgressCallback& progress)
+{
+    if (settings.width <= 0 || settings.height <= 0)
+        throw Error("render: size must be positive, got " + std::to_string(settings.width) + "x" +
+                    std::to_string(settings.height));
+    if (!(settings.units_per_pixel > 0)) throw Error("render: units per pixel must be positive");
+    Image image(settings.width, settings.height, 3);
+
+    // Workers take bands of rows from a shared counter; each pixel depends only on its own
+    // coordinates, so the image is bit-identical for any thread count.
+    constexpr int rows_per_chunk = 8;
+    const int chunk_count = (settings.height + rows_per_chunk - 1) / rows_per_chunk;
+    const int threads = std::max(1, std::min(chunk_count, settings.threads > 0
+                                                              ? settings.threads
+                                                              : int(std::max(1u, std::thread::hardware_concurrency()))));
+    std::atomic<int> next_chunk{0}, done_chunks{0};
+    std::exception_ptr failure;
+    std::mutex mutex;
+    std::condition_variable finished;
+    auto work = [&] {
+        try {
+            for (int chunk; (chunk = next_chunk.fetch_add(1)) < chunk_count;) {
+                const int y0 = chunk * rows_per_chunk;
+                const int rows = std::min(rows_per_chunk, settings.height - y0);
+                render_region(texture, settings, 0, y0, settings.width, rows,
+                              &image.pixels[std::size_t(y0) * settings.width * 3]);
+                done_chunks.fetch_add(1);
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!failure) failure = std::current_exception();
+            next_chunk = chunk_count;
+        }
+        finished.notify_all();
+    };
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t) workers.emplace_back(work);
+    if (progress) {
+        // Progress is reported from this thread only, so callbacks need no locking.
+        std::unique_lock<std::mutex> lock(mutex);
+        while (done_chunks.load() < chunk_count && !failure) {
+            progress(double(done_chunks.load()) / chunk_count, "render");
+            finished.wait_for(lock, std::chrono::milliseconds(100));
+        }
+    }
+    for (auto& worker : workers) worker.join();
+    if (failure) std::rethrow_exception(failure);
+    if (progress) progress(1.0, "render");
+    return image;
+}
+
+}  // namespace stochtex

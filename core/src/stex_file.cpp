@@ -1,1 +1,375 @@
-// placeholder
+#include <stochtex/error.h>
+#include <stochtex/stex_file.h>
+
+#include "json_fields.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <set>
+
+namespace stochtex {
+
+namespace {
+
+using json_fields::Field;
+using json_fields::Json;
+
+/// Band j has frequencies around 2^-(j+2) cycles per pixel: 24 bands reach past any image size.
+constexpr std::size_t max_bands = 24;
+constexpr double orthonormal_tolerance = 1e-4;
+constexpr std::size_t min_histogram_knots = 4;
+
+/// Shortest text of a double, for error messages (also "inf" and "nan").
+std::string show(double value)
+{
+    char text[32];
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+std::string joined(const std::vector<std::string>& names)
+{
+    std::string result;
+    for (const std::string& name : names) result += (result.empty() ? "" : ", ") + name;
+    return result;
+}
+
+std::string index_path(const std::string& path, std::size_t index)
+{
+    return path + "[" + std::to_string(index) + "]";
+}
+
+// ---- Checks shared by the reader and validate() ------------------------------------------------
+
+void check_version(int version, const std::string& source)
+{
+    if (version != TextureDescription::current_version)
+        json_fields::fail(source, "version",
+                          "unsupported version " + std::to_string(version) + " (this build reads version " +
+                              std::to_string(TextureDescription::current_version) + ")");
+}
+
+void check_model(const std::string& model, const std::string& source)
+{
+    const std::vector<std::string>& models = known_models();
+    if (std::find(models.begin(), models.end(), model) == models.end())
+        json_fields::fail(source, "model", "unknown model '" + model + "' (known models: " + joined(models) + ")");
+}
+
+/// Numbers are stored as floats in the file, so they must be finite as floats too.
+void check_finite(double value, const std::string& path, const std::string& source)
+{
+    if (!(std::fabs(value) <= std::numeric_limits<float>::max()))
+        json_fields::fail(source, path, "expected a finite number within float range, got " + show(value));
+}
+
+void check_positive(double value, const std::string& path, const std::string& source)
+{
+    check_finite(value, path, source);
+    if (!(value > 0)) json_fields::fail(source, path, "must be positive, got " + show(value));
+}
+
+void validate_basis(const TextureDescription& description, const std::string& source)
+{
+    const auto& basis = description.basis;
+    for (std::size_t row = 0; row < 3; ++row)
+        for (std::size_t col = 0; col < 3; ++col)
+            check_finite(basis[row][col], index_path(index_path("colour.basis", row), col), source);
+
+    if (description.colour_mode != ColourMode::pca) {
+        // The RGB modes synthesise R, G and B directly: there is no rotation to store.
+        for (std::size_t row = 0; row < 3; ++row)
+            for (std::size_t col = 0; col < 3; ++col)
+                if (basis[row][col] != (row == col ? 1.0 : 0.0))
+                    json_fields::fail(source, "colour.basis",
+                                      std::string("must be the identity in colour mode '") +
+                                          to_string(description.colour_mode) + "'");
+        return;
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+        for (std::size_t b = a; b < 3; ++b) {
+            double dot = 0;
+            for (std::size_t row = 0; row < 3; ++row) dot += basis[row][a] * basis[row][b];
+            if (std::fabs(dot - (a == b ? 1.0 : 0.0)) > orthonormal_tolerance)
+                json_fields::fail(source, "colour.basis",
+                                  "columns are not orthonormal (column " + std::to_string(a) + " · column " +
+                                      std::to_string(b) + " = " + show(dot) + ", tolerance " +
+                                      show(orthonormal_tolerance) + ")");
+        }
+    }
+    // A reflection would be as good a basis mathematically; requiring a rotation makes the basis
+    // of a given photo unique up to the signs of pairs of columns.
+    const double det = basis[0][0] * (basis[1][1] * basis[2][2] - basis[1][2] * basis[2][1]) -
+                       basis[0][1] * (basis[1][0] * basis[2][2] - basis[1][2] * basis[2][0]) +
+                       basis[0][2] * (basis[1][0] * basis[2][1] - basis[1][1] * basis[2][0]);
+    if (!(det > 0))
+        json_fields::fail(source, "colour.basis", "determinant is " + show(det) + ": must be positive (a rotation)");
+}
+
+void validate_histogram(const HistogramMap& histogram, const std::string& path, const std::string& source)
+{
+    const std::vector<double>& z = histogram.z;
+    const std::vector<double>& value = histogram.value;
+    if (z.size() != value.size())
+        json_fields::fail(source, path,
+                          "z has " + std::to_string(z.size()) + " knots but value has " + std::to_string(value.size()));
+    if (!histogram.enabled()) return;
+    if (z.size() < min_histogram_knots)
+        json_fields::fail(source, path,
+                          "expected at least " + std::to_string(min_histogram_knots) + " knots, got " +
+                              std::to_string(z.size()));
+    for (std::size_t i = 0; i < z.size(); ++i) {
+        check_finite(z[i], index_path(path + ".z", i), source);
+        check_finite(value[i], index_path(path + ".value", i), source);
+        if (i > 0 && !(z[i] > z[i - 1]))
+            json_fields::fail(source, index_path(path + ".z", i),
+                              "knots must be strictly increasing (" + show(z[i]) + " after " + show(z[i - 1]) + ")");
+        if (i > 0 && !(value[i] >= value[i - 1]))
+            json_fields::fail(source, index_path(path + ".value", i),
+                              "values must be non-decreasing (" + show(value[i]) + " after " + show(value[i - 1]) +
+                                  ")");
+    }
+}
+
+void validate_wavelet(const WaveletParameters& parameters, const std::string& source)
+{
+    const auto& weights = parameters.band_weights;
+    for (std::size_t channel = 0; channel < 3; ++channel) {
+        const std::string path = index_path("parameters.band_weights", channel);
+        const std::size_t bands = weights[channel].size();
+        if (bands < 1 || bands > max_bands)
+            json_fields::fail(source, path,
+                              "expected 1 to " + std::to_string(max_bands) + " bands, got " + std::to_string(bands));
+        if (bands != weights[0].size())
+            json_fields::fail(source, path,
+                              "has " + std::to_string(bands) + " bands but channel 0 has " +
+                                  std::to_string(weights[0].size()));
+        for (std::size_t band = 0; band < bands; ++band) {
+            check_finite(weights[channel][band], index_path(path, band), source);
+            if (weights[channel][band] < 0)
+                json_fields::fail(source, index_path(path, band),
+                                  "weights must not be negative, got " + show(weights[channel][band]));
+        }
+    }
+}
+
+// ---- Reading ------------------------------------------------------------------------------------
+
+WaveletParameters read_wavelet(const Field& parameters)
+{
+    parameters.expect_keys({"band_weights"});
+    WaveletParameters result;
+    std::vector<Field> channels = parameters["band_weights"].elements(3, "channels");
+    for (std::size_t channel = 0; channel < 3; ++channel) result.band_weights[channel] = channels[channel].numbers();
+    return result;
+}
+
+void read_colour(const Field& colour, TextureDescription& description)
+{
+    colour.expect_keys({"space", "mode", "mean", "basis"});
+    description.colour_space = colour["space"].string();
+    const Field mode = colour["mode"];
+    try {
+        description.colour_mode = colour_mode_from_string(mode.string());
+    } catch (const Error& e) {
+        mode.fail(e.what());
+    }
+    description.mean = colour["mean"].numbers<3>();
+    std::vector<Field> rows = colour["basis"].elements(3, "rows");
+    for (std::size_t row = 0; row < 3; ++row) description.basis[row] = rows[row].numbers<3>();
+}
+
+void read_histograms(const Field& histograms, TextureDescription& description)
+{
+    std::vector<Field> channels = histograms.elements(3, "histograms");
+    for (std::size_t channel = 0; channel < 3; ++channel) {
+        const Field& histogram = channels[channel];
+        if (histogram.is_null()) continue;  // disabled: the channel stays Gaussian
+        histogram.expect_keys({"z", "value"});
+        HistogramMap& map = description.histograms[channel];
+        map.z = histogram["z"].numbers();
+        map.value = histogram["value"].numbers();
+        // One spelling per description keeps files canonical.
+        if (!map.enabled()) histogram.fail("a disabled histogram is written as null, not as empty arrays");
+    }
+}
+
+void read_provenance(const Field& provenance, Provenance& result)
+{
+    provenance.expect_keys({"source", "source_size", "input_colour_space", "tool", "options"});
+    result.source = provenance["source"].string();
+    std::vector<Field> size = provenance["source_size"].elements(2, "numbers");
+    result.source_width = static_cast<int>(size[0].integer(0, std::numeric_limits<int>::max()));
+    result.source_height = static_cast<int>(size[1].integer(0, std::numeric_limits<int>::max()));
+    result.input_colour_space = provenance["input_colour_space"].string();
+    result.tool = provenance["tool"].string();
+    for (const auto& [name, value] : provenance["options"].members()) result.options.emplace_back(name, value.string());
+}
+
+// ---- Writing ------------------------------------------------------------------------------------
+
+Json to_json(const TextureDescription& description)
+{
+    Json root = Json::object();  // ordered: keys appear in the order they are set
+    root["format"] = "stex";
+    root["version"] = description.version;
+    root["model"] = description.model;
+    root["seed"] = description.seed;
+
+    root["scale"]["pixels_per_unit"] = description.pixels_per_unit;
+    root["scale"]["unit_size_m"] = description.unit_size_m;
+
+    Json& colour = root["colour"];
+    colour["space"] = description.colour_space;
+    colour["mode"] = to_string(description.colour_mode);
+    colour["mean"] = description.mean;
+    colour["basis"] = description.basis;
+
+    Json& histograms = root["histograms"] = Json::array();
+    for (const HistogramMap& map : description.histograms) {
+        Json histogram;  // null when disabled
+        if (map.enabled()) {
+            histogram["z"] = map.z;
+            histogram["value"] = map.value;
+        }
+        histograms.push_back(histogram);
+    }
+
+    Json& parameters = root["parameters"] = Json::object();
+    if (description.wavelet) parameters["band_weights"] = description.wavelet->band_weights;
+
+    const Provenance& provenance = description.provenance;
+    Json& source = root["provenance"];
+    source["source"] = provenance.source;
+    source["source_size"] = {provenance.source_width, provenance.source_height};
+    source["input_colour_space"] = provenance.input_colour_space;
+    source["tool"] = provenance.tool;
+    source["options"] = Json::object();
+    for (const auto& [name, value] : provenance.options) source["options"][name] = value;
+    return root;
+}
+
+}  // namespace
+
+void validate(const TextureDescription& description, const std::string& source_name)
+{
+    const std::string& source = source_name;
+    check_version(description.version, source);
+    check_model(description.model, source);
+    // Exactly the parameters of the named model are set.
+    if (description.wavelet.has_value() != (description.model == "wavelet"))
+        json_fields::fail(source, "parameters",
+                          description.wavelet ? "wavelet parameters given for model '" + description.model + "'"
+                                              : std::string("missing for model 'wavelet'"));
+    if (description.wavelet) validate_wavelet(*description.wavelet, source);
+
+    check_positive(description.pixels_per_unit, "scale.pixels_per_unit", source);
+    check_positive(description.unit_size_m, "scale.unit_size_m", source);
+
+    if (description.colour_space != "lin_rec709")
+        json_fields::fail(source, "colour.space",
+                          "unsupported colour space '" + description.colour_space + "' (this build reads lin_rec709)");
+    for (std::size_t c = 0; c < 3; ++c) check_finite(description.mean[c], index_path("colour.mean", c), source);
+    validate_basis(description, source);
+    for (std::size_t c = 0; c < 3; ++c)
+        validate_histogram(description.histograms[c], index_path("histograms", c), source);
+
+    const Provenance& provenance = description.provenance;
+    if (provenance.source_width < 0 || provenance.source_height < 0)
+        json_fields::fail(source, "provenance.source_size",
+                          "sizes must not be negative, got " + std::to_string(provenance.source_width) + " x " +
+                              std::to_string(provenance.source_height));
+    // Options become the keys of a JSON object: a repeated name could not be read back.
+    std::set<std::string> option_names;
+    for (const auto& option : provenance.options)
+        if (!option_names.insert(option.first).second)
+            json_fields::fail(source, "provenance.options." + option.first, "duplicate option");
+}
+
+TextureDescription parse_stex(const std::string& text, const std::string& source_name)
+{
+    const Json json = json_fields::parse(text, source_name);
+    const Field root(json, source_name);
+
+    // Format and version first: in a file of another kind or version any other field may differ.
+    const Field format = root["format"];
+    if (format.string() != "stex") format.fail("expected \"stex\", got \"" + format.string() + "\"");
+    TextureDescription description;
+    description.version = static_cast<int>(
+        root["version"].integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+    check_version(description.version, source_name);
+
+    root.expect_keys(
+        {"format", "version", "model", "seed", "scale", "colour", "histograms", "parameters", "provenance"});
+    description.model = root["model"].string();
+    check_model(description.model, source_name);
+    description.seed = static_cast<std::uint32_t>(root["seed"].integer(0, std::numeric_limits<std::uint32_t>::max()));
+
+    const Field scale = root["scale"];
+    scale.expect_keys({"pixels_per_unit", "unit_size_m"});
+    description.pixels_per_unit = scale["pixels_per_unit"].number();
+    description.unit_size_m = scale["unit_size_m"].number();
+
+    read_colour(root["colour"], description);
+    read_histograms(root["histograms"], description);
+    // One branch per known model (check_model has run).
+    if (description.model == "wavelet") description.wavelet = read_wavelet(root["parameters"]);
+    read_provenance(root["provenance"], description.provenance);
+
+    validate(description, source_name);
+    return description;
+}
+
+TextureDescription read_stex(const std::string& path)
+{
+    // An ifstream opens a directory without complaint and then reads nothing.
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) throw Error(path + ": cannot read: is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) throw Error(path + ": cannot read: " + std::strerror(errno));
+    return parse_stex(text, path);
+}
+
+std::string format_stex(const TextureDescription& description)
+{
+    validate(description, "texture description");
+    return json_fields::format(to_json(description));
+}
+
+void write_stex(const std::string& path, const TextureDescription& description)
+{
+    validate(description, path);
+    const std::string text = json_fields::format(to_json(description));
+    // Write beside the target and rename: readers never see a half-written file, and a failed
+    // write leaves an existing file intact.
+    const std::string temporary = path + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path + ": cannot write: " + std::strerror(errno));
+        out << text;
+        out.close();
+        if (!out) {
+            const std::string reason = std::strerror(errno);
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            throw Error(path + ": cannot write: " + reason);
+        }
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw Error(path + ": cannot write: " + error.message());
+    }
+}
+
+}  // namespace stochtex

@@ -1,1 +1,89 @@
-// placeholder
+#include "wavelet_texture.h"
+
+#include "band_filter.h"
+#include "random.h"
+#include "wavelet_noise.h"
+
+#include <cmath>
+
+namespace stochtex {
+
+namespace {
+
+std::array<double, 3> band_sigmas(const WaveletParameters& parameters)
+{
+    const double band_variance = WaveletNoise2D::shared().variance();
+    std::array<double, 3> sigma{};
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0;
+        for (double w : parameters.band_weights[c]) sum += w * w;
+        sigma[c] = std::sqrt(band_variance * sum);
+    }
+    return sigma;
+}
+
+}  // namespace
+
+WaveletTexture::WaveletTexture(const TextureDescription& description)
+    : Texture(description),
+      sigma_m_(band_sigmas(*description.wavelet)),
+      solid_gain_(std::sqrt(WaveletNoise2D::shared().variance() / WaveletNoise3D::shared().variance())),
+      colour_(description, sigma_m_)
+{
+    const auto& weights = description.wavelet->band_weights;
+    // Offsets cover a whole tile; the 3D tile is smaller, so 3D takes each offset modulo it.
+    const double tile = WaveletNoise2D::shared().tile_size();
+    for (int c = 0; c < 3; ++c) {
+        const int offset_channel = description.colour_mode == ColourMode::rgb_shared ? 0 : c;
+        for (std::size_t j = 0; j < weights[c].size(); ++j) {
+            SplitMix64 rng(mix_seed(description.seed, j, offset_channel));
+            Band band{weights[c][j], std::ldexp(description.pixels_per_unit, -int(j)), {}};
+            for (double& o : band.offset) o = tile * rng.uniform();
+            bands_[c].push_back(band);
+        }
+    }
+}
+
+template <class BandNoise>
+Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
+{
+    std::array<double, 3> z{}, dropped{};
+    for (int c = 0; c < 3; ++c) {
+        double kept = 0, dropped_variance = 0;
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const double weight = bands[j].weight;
+            const float fade = band_fade(int(j), footprint_px);
+            if (fade < 1) dropped_variance += (1 - double(fade) * fade) * weight * weight;
+            if (fade > 0 && weight != 0) kept += fade * weight * band_noise(bands[j]);
+        }
+        const double sigma = sigma_m_[c];
+        if (sigma > 0) {
+            z[c] = gain * kept / sigma;
+            dropped[c] = std::sqrt(dropped_variance * WaveletNoise2D::shared().variance()) / sigma;
+        }
+    }
+    return colour_.to_rgb(z, dropped);
+}
+
+Rgb WaveletTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
+{
+    const WaveletNoise2D& noise = WaveletNoise2D::shared();
+    const double footprint_px = footprint.major_axis() * description().pixels_per_unit;
+    return synthesize(footprint_px, 1.0, [&](const Band& band) {
+        return noise.eval(uv[0] * band.frequency_scale + band.offset[0], uv[1] * band.frequency_scale + band.offset[1]);
+    });
+}
+
+Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
+{
+    const WaveletNoise3D& noise = WaveletNoise3D::shared();
+    const double footprint_px = point.major_axis() * description().pixels_per_unit;
+    const auto& p = point.p;
+    return synthesize(footprint_px, solid_gain_, [&](const Band& band) {
+        return noise.eval(p[0] * band.frequency_scale + band.offset[0], p[1] * band.frequency_scale + band.offset[1],
+                          p[2] * band.frequency_scale + band.offset[2]);
+    });
+}
+
+}  // namespace stochtex

@@ -1,0 +1,173 @@
+#include "commands.h"
+
+#include "plot.h"
+#include "progress_bar.h"
+
+#include <stochtex/describe.h>
+#include <stochtex/error.h>
+#include <stochtex/metrics.h>
+#include <stochtex/morph.h>
+#include <stochtex/render.h>
+#include <stochtex/stex_file.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace stex_cli {
+
+using namespace stochtex;
+
+std::pair<int, int> parse_size(const std::string& text, const char* option)
+{
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
+        w > 65536 || h > 65536)
+        throw Error(std::string(option) + ": expected WxH with 1 ≤ W, H ≤ 65536 (e.g. 512x512), got '" + text + "'");
+    return {w, h};
+}
+
+int AnalyzeCommand::run() const
+{
+    const auto start = std::chrono::steady_clock::now();
+    ImageReadOptions read_options;
+    read_options.input_colour_space = colour_space;
+    const Image image = read_image_linear(photo, read_options);
+    AnalysisOptions options;
+    options.model = model;
+    options.colour_mode = colour_mode_from_string(colour);
+    options.histogram = histogram_mode_from_string(histogram);
+    options.histogram_knots = knots;
+    options.psd = psd_estimator_from_string(psd);
+    options.max_bands = bands;
+    options.seed = seed;
+    options.unit_size_m = unit_size_m;
+    options.source_name = std::filesystem::path(photo).filename().string();
+    options.input_colour_space = colour_space.empty() ? "file" : colour_space;
+    const TextureDescription description = analyze(image, options, terminal_progress_bar());
+    write_stex(output, description);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("wrote %s (%s, %zu bytes) from %s (%dx%d) in %.2f s\n", output.c_str(), model.c_str(),
+                std::size_t(std::filesystem::file_size(output)), photo.c_str(), image.width, image.height, seconds);
+    return 0;
+}
+
+int RenderCommand::run() const
+{
+    TextureDescription description = read_stex(texture);
+    if (seed >= 0) {
+        if (seed > 0xffffffffll) throw Error("--seed: must fit in 32 bits");
+        description.seed = std::uint32_t(seed);
+    }
+    const auto texture_object = make_texture(description);
+    RenderSettings settings;
+    if (!size.empty()) {
+        std::tie(settings.width, settings.height) = parse_size(size, "--size");
+    } else if (description.provenance.source_width > 0) {
+        settings.width = description.provenance.source_width;
+        settings.height = description.provenance.source_height;
+    }
+    // One output pixel covers `scale` exemplar pixels: scale 1 looks like the photo.
+    settings.units_per_pixel = scale / description.pixels_per_unit;
+    settings.origin_u = origin_u;
+    settings.origin_v = origin_v;
+    settings.solid = solid;
+    settings.z = z;
+    settings.filter = !no_filter;
+    settings.threads = threads;
+    const auto start = std::chrono::steady_clock::now();
+    const Image image = stochtex::render(*texture_object, settings, terminal_progress_bar());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_image(output, image);
+    std::printf("wrote %s (%dx%d, %s, %.1f Mpixel/s)\n", output.c_str(), image.width, image.height,
+                solid ? "solid slice" : "2D", image.pixel_count() / seconds * 1e-6);
+    return 0;
+}
+
+int InfoCommand::run() const
+{
+    const TextureDescription description = read_stex(texture);
+    std::printf("%s  (%zu bytes)\n%s", texture.c_str(), std::size_t(std::filesystem::file_size(texture)),
+                describe(description).c_str());
+    return 0;
+}
+
+namespace {
+
+/// Luma histogram (counts normalised to a density) on shared bin edges, for the plot.
+std::vector<double> luma_histogram(const Image& image, double lo, double hi, int bins)
+{
+    std::vector<double> counts(bins, 0.0);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const double luma = 0.2126 * image.pixels[3 * i] + 0.7152 * image.pixels[3 * i + 1] + 0.0722 * image.pixels[3 * i + 2];
+        const int bin = int((luma - lo) / (hi - lo) * bins);
+        if (bin >= 0 && bin < bins) counts[bin] += 1.0 / image.pixel_count();
+    }
+    return counts;
+}
+
+}  // namespace
+
+int CompareCommand::run() const
+{
+    ImageReadOptions read_options;
+    read_options.input_colour_space = colour_space;
+    const Image photo_image = read_image_linear(photo, read_options);
+    const TextureDescription description = read_stex(texture);
+    RenderSettings settings;
+    settings.width = photo_image.width;
+    settings.height = photo_image.height;
+    settings.units_per_pixel = 1.0 / description.pixels_per_unit;
+    const Image synthesis = render(*make_texture(description), settings, terminal_progress_bar());
+    const ComparisonReport report = compare_images(photo_image, synthesis);
+    std::printf("%s vs %s (%dx%d, at the photo's pixel scale)\n%s", photo.c_str(), texture.c_str(), photo_image.width,
+                photo_image.height, format_report(report).c_str());
+    if (output.empty()) return 0;
+
+    // Figure: photo | synthesis on top (at most 512 px each), PSD and histogram plots below.
+    const int tile = std::min(512, std::min(photo_image.width, photo_image.height));
+    auto crop = [&](const Image& source) {
+        Image out(tile, tile, 3);
+        for (int y = 0; y < tile; ++y)
+            for (int x = 0; x < tile; ++x)
+                for (int c = 0; c < 3; ++c) out.at(x, y, c) = source.at(x, y, c);
+        return out;
+    };
+    const std::array<float, 3> photo_colour{0.05f, 0.05f, 0.6f}, synthesis_colour{0.7f, 0.08f, 0.02f};
+    const Image psd_panel = plot_panel(tile, tile / 2,
+                                       {{report.psd_reference_luma.frequency, report.psd_reference_luma.power, photo_colour},
+                                        {report.psd_test_luma.frequency, report.psd_test_luma.power, synthesis_colour}},
+                                       true, true);
+    const double lo = 0, hi = std::max(1e-6, 2.0 * (0.2126 * report.mean_reference[0] + 0.7152 * report.mean_reference[1] +
+                                                    0.0722 * report.mean_reference[2]));
+    constexpr int bins = 64;
+    std::vector<double> centres(bins);
+    for (int b = 0; b < bins; ++b) centres[b] = lo + (b + 0.5) * (hi - lo) / bins;
+    const Image histogram_panel = plot_panel(
+        tile, tile / 2,
+        {{centres, luma_histogram(photo_image, lo, hi, bins), photo_colour},
+         {centres, luma_histogram(synthesis, lo, hi, bins), synthesis_colour}},
+        false, false);
+    Image figure(2 * tile, tile + tile / 2, 3);
+    paste(figure, crop(photo_image), 0, 0);
+    paste(figure, crop(synthesis), tile, 0);
+    paste(figure, psd_panel, 0, tile);
+    paste(figure, histogram_panel, tile, tile);
+    write_image(output, figure);
+    std::printf("wrote %s (left: photo, right: synthesis; below: radial PSD (log-log) and luma histogram; blue = photo, "
+                "red = synthesis)\n",
+                output.c_str());
+    return 0;
+}
+
+int MorphCommand::run() const
+{
+    const TextureDescription result = stochtex::morph(read_stex(a), read_stex(b), t);
+    write_stex(output, result);
+    std::printf("wrote %s (t = %g between %s and %s)\n", output.c_str(), t, a.c_str(), b.c_str());
+    return 0;
+}
+
+}  // namespace stex_cli

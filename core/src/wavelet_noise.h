@@ -1,0 +1,72 @@
+// Cook–DeRose wavelet noise bands (SIGGRAPH 2005), the basis of the wavelet model (paper 000).
+//
+// A band N is a quadratic B-spline whose coefficients are Gaussian white noise minus its
+// down-then-up-sampled version, so N carries (almost) only frequencies in [1/4, 1/2) cycles per
+// lattice unit. The coefficient tile is periodic; the texture decorrelates bands and channels
+// with per-band random offsets.
+//
+// σ_N² (the band variance, paper eq. 2, "≈ 0.265") depends on the tile, the filters and the
+// dimension. We never assume it: each tile measures its own spatial mean of N² exactly (a dense
+// regular grid over one full period), in 2D and 3D; a 3D band sliced by a plane has the 3D
+// pointwise variance (stationarity), which tests confirm by Monte Carlo.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace stochtex {
+
+class WaveletNoise2D {
+public:
+    /// The shared process-wide tile (built once, thread-safe).
+    static const WaveletNoise2D& shared();
+    WaveletNoise2D(int tile_size, std::uint64_t tile_seed);
+
+    /// N(x, y), x and y in lattice units. Periodic with period tile_size().
+    float eval(double x, double y) const;
+    int tile_size() const { return size_; }
+    /// Spatial mean of N² over one period (σ_N² of this tile).
+    double variance() const { return variance_; }
+
+private:
+    int size_;
+    int mask_;
+    std::vector<float> coefficients_;
+    double variance_ = 0;
+};
+
+class WaveletNoise3D {
+public:
+    static const WaveletNoise3D& shared();
+    WaveletNoise3D(int tile_size, std::uint64_t tile_seed);
+
+    float eval(double x, double y, double z) const;
+    int tile_size() const { return size_; }
+    double variance() const { return variance_; }
+
+private:
+    int size_;
+    int mask_;
+    std::vector<float> coefficients_;
+    double variance_ = 0;
+};
+
+/// Quadratic B-spline weights for the three coefficients around x, and the index of the first.
+/// (Cook–DeRose evaluate at "mid = ceil(x - 1/2)"; this is the same spline, written for floor.)
+struct QuadraticBSplineWeights {
+    int first;     ///< index of the leftmost of the three coefficients
+    float w[3];
+    explicit QuadraticBSplineWeights(double x)
+    {
+        const double shifted = x - 0.5;
+        const double base = std::floor(shifted);
+        const float t = float(shifted - base);  // in [0, 1)
+        first = int(base);
+        w[0] = 0.5f * (1 - t) * (1 - t);
+        w[2] = 0.5f * t * t;
+        w[1] = 1 - w[0] - w[2];
+    }
+};
+
+}  // namespace stochtex
