@@ -12,7 +12,7 @@ namespace stex_cli {
 
 struct AnalyzeCommand {
     std::string photo, output;
-    std::string model = "wavelet", colour = "pca", histogram = "auto", psd = "periodic-smooth";
+    std::string model = "wavelet", colour = "pca", histogram = "auto", psd = "periodic";
     std::string colour_space;  // empty: what the file says, else sRGB
     int knots = 10;
     int bands = 0;

@@ -12,7 +12,9 @@ int main(int argc, char** argv)
 {
     using namespace stex_cli;
     CLI::App app{"stex — procedural textures by example (stochtex " STOCHTEX_VERSION ")"};
-    app.require_subcommand(1);
+    // At most one sub-command; "none" is reported below, so that an unknown word is named as
+    // such instead of as a missing sub-command.
+    app.require_subcommand(0, 1);
     app.set_version_flag("--version", "stochtex " STOCHTEX_VERSION);
 
     AnalyzeCommand analyze;
@@ -26,7 +28,7 @@ int main(int argc, char** argv)
                   "Histogram matching: on, off, or auto (per channel, when it brings the histogram measurably closer)")
         ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
     a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
-    a->add_option("--psd", analyze.psd, "Power spectrum estimator: periodic-smooth (no edge leak) or periodic (paper)")
+    a->add_option("--psd", analyze.psd, "Power spectrum estimator: periodic (paper; default, chosen by measurement) or periodic-smooth (Moisan, no edge leak on non-tileable photos)")
         ->check(CLI::IsMember({"periodic-smooth", "periodic"}))->capture_default_str();
     a->add_option("--bands", analyze.bands, "Keep at most N finest bands (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();
@@ -73,6 +75,10 @@ int main(int argc, char** argv)
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    }
+    if (app.get_subcommands().empty()) {
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph); see stex --help\n");
+        return 1;
     }
     try {
         if (*a) return analyze.run();

@@ -8,7 +8,7 @@ packages=(
   libopenexr-dev libimath-dev libopencolorio-dev
   libeigen3-dev libfftw3-dev
   libhwy-dev libtbb-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libnoise-dev
   povray python3-numpy
 )
 if [ "${1:-}" = "--with-blender" ]; then packages+=(blender); fi

@@ -2,6 +2,7 @@
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>
 
+#include "band_leakage.h"
 #include "band_power.h"
 #include "colour_basis.h"
 #include "gaussian.h"
@@ -106,7 +107,8 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
     description.basis = colour.basis;
     std::array<std::vector<float>, 3> channels = decorrelate(photo, colour);
 
-    // Steps 3–4 per channel: optional Gaussianisation, then band weights (eq. 9).
+    // Steps 3–4 per channel: optional Gaussianisation, then band weights (eq. 9, with the
+    // bands' measured overlap undone: band_leakage.h).
     const double band_variance = WaveletNoise2D::shared().variance();
     WaveletParameters wavelet;
     for (int c = 0; c < 3; ++c) {
@@ -123,7 +125,8 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
         }
         report((c + 0.5) / 3, "spectrum");
         const std::vector<double> power = band_powers(channel, photo.width, photo.height, band_count, options.psd);
-        for (double p : power) wavelet.band_weights[c].push_back(std::sqrt(std::max(0.0, p) / band_variance));
+        wavelet.band_weights[c] =
+            solve_band_weights(power, band_variance, leakage_corrected_band_count(photo.width, photo.height));
     }
     description.wavelet = std::move(wavelet);
 

@@ -38,8 +38,6 @@ public:
     /// The top level of a document read from `source`.
     Field(const Json& value, const std::string& source) : Field(value, source, std::string()) {}
 
-    const Json& json() const { return *value_; }
-    const std::string& path() const { return path_; }
     [[noreturn]] void fail(const std::string& problem) const;
 
     /// Requires an object whose keys are exactly `keys`, in any order.

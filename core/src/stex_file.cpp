@@ -62,7 +62,8 @@ void check_model(const std::string& model, const std::string& source)
         json_fields::fail(source, "model", "unknown model '" + model + "' (known models: " + joined(models) + ")");
 }
 
-/// Numbers are stored as floats in the file, so they must be finite as floats too.
+/// Numbers are stored as floats in the file, so they must be finite as floats too. (Written as
+/// a negated comparison so that NaN fails it.)
 void check_finite(double value, const std::string& path, const std::string& source)
 {
     if (!(std::fabs(value) <= std::numeric_limits<float>::max()))
@@ -257,9 +258,8 @@ Json to_json(const TextureDescription& description)
 
 }  // namespace
 
-void validate(const TextureDescription& description, const std::string& source_name)
+void validate(const TextureDescription& description, const std::string& source)
 {
-    const std::string& source = source_name;
     check_version(description.version, source);
     check_model(description.model, source);
     // Exactly the parameters of the named model are set.

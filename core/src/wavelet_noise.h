@@ -26,14 +26,27 @@ public:
     /// N(x, y), x and y in lattice units. Periodic with period tile_size().
     float eval(double x, double y) const;
     int tile_size() const { return size_; }
+    /// The B-spline coefficients, tile_size² floats, rows contiguous (for spectral analysis).
+    const std::vector<float>& coefficients() const { return coefficients_; }
     /// Spatial mean of N² over one period (σ_N² of this tile).
     double variance() const { return variance_; }
 
+    /// Sampled on a regular grid of spacing 2^-j lattice units, the variance of N depends on
+    /// where the grid sits within a lattice cell (the B-spline weights differ with the phase):
+    /// up to ±20 % for j = 0, which is exactly how a render at the photo's pixel scale samples
+    /// the finest band. This returns a grid phase φ in [0, 2^-j) at which the grid's variance
+    /// equals variance(), for j < balanced_phase_count; the texture puts its offsets there.
+    double balanced_phase(int j) const { return balanced_phase_[j]; }
+    static constexpr int balanced_phase_count = 3;
+
 private:
+    double grid_variance(int j, double phase) const;
+
     int size_;
     int mask_;
     std::vector<float> coefficients_;
     double variance_ = 0;
+    double balanced_phase_[balanced_phase_count] = {};
 };
 
 class WaveletNoise3D {

@@ -38,7 +38,15 @@ WaveletTexture::WaveletTexture(const TextureDescription& description)
         for (std::size_t j = 0; j < weights[c].size(); ++j) {
             SplitMix64 rng(mix_seed(description.seed, j, offset_channel));
             Band band{weights[c][j], std::ldexp(description.pixels_per_unit, -int(j)), {}};
-            for (double& o : band.offset) o = tile * rng.uniform();
+            // Whole-lattice random offsets decorrelate bands and channels; the fractional part
+            // of the fine bands is the balanced phase, so a render at the photo's pixel scale
+            // (pixel centres at (x + ½)·2^-j) shows each band with its true variance.
+            const bool balanced = j < std::size_t(WaveletNoise2D::balanced_phase_count);
+            const double grid_phase = 0.5 * std::ldexp(1.0, -int(j));
+            for (double& o : band.offset)
+                o = balanced ? std::floor(tile * rng.uniform()) +
+                                   WaveletNoise2D::shared().balanced_phase(int(j)) - grid_phase
+                             : tile * rng.uniform();
             bands_[c].push_back(band);
         }
     }

@@ -27,7 +27,7 @@ struct AnalysisOptions {
     ColourMode colour_mode = ColourMode::pca;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
-    PsdEstimator psd = PsdEstimator::periodic_smooth;
+    PsdEstimator psd = PsdEstimator::periodic;
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;

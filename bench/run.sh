@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds wavelet_bench (Release) and runs it with 5 repetitions, printing medians only.
+# Usage: bench/run.sh [build-dir] [extra benchmark flags...]   (default build dir: build-bench)
+# Takes well under a minute on 2 cores.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$root/build-bench}"
+if [ $# -gt 0 ]; then shift; fi
+lscpu | grep 'Model name' || true
+echo "cores: $(nproc)"
+cmake -S "$root" -B "$build" >/dev/null
+cmake --build "$build" --target wavelet_bench -j"$(nproc)" >/dev/null
+"$build/bench/wavelet_bench" \
+  --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.25 "$@"
