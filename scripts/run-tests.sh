@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Installs the dependencies (Debian 12, as root; idempotent), builds everything and runs the
+# test suite. This is the README's test command and what CI runs (.ci/run).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$(nproc)"
+ctest --test-dir build --output-on-failure -j"$(nproc)"
