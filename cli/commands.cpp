@@ -61,7 +61,6 @@ int RenderCommand::run() const
         if (seed > 0xffffffffll) throw Error("--seed: must fit in 32 bits");
         description.seed = std::uint32_t(seed);
     }
-    const auto texture_object = make_texture(description);
     RenderSettings settings;
     if (!size.empty()) {
         std::tie(settings.width, settings.height) = parse_size(size, "--size");
@@ -77,6 +76,7 @@ int RenderCommand::run() const
     settings.z = z;
     settings.filter = !no_filter;
     settings.threads = threads;
+    const auto texture_object = make_texture(description);
     const auto start = std::chrono::steady_clock::now();
     const Image image = stochtex::render(*texture_object, settings, terminal_progress_bar());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

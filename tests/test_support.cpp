@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 
 namespace stochtex::test {
@@ -19,7 +21,8 @@ std::string repo_exemplar(const std::string& name)
 
 std::string temp_dir(const std::string& test_name)
 {
-    fs::path dir = fs::temp_directory_path() / ("stochtex-test-" + test_name);
+    // CTest runs tests in parallel processes: the pid keeps their directories apart.
+    fs::path dir = fs::temp_directory_path() / ("stochtex-test-" + test_name + "-" + std::to_string(getpid()));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir.string();

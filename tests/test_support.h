@@ -9,7 +9,7 @@ namespace stochtex::test {
 std::string shared_exemplar(const std::string& name);
 /// The small exemplar committed to the repository (data/exemplars/<name>).
 std::string repo_exemplar(const std::string& name);
-/// A fresh, empty directory for this test's files.
+/// A fresh, empty directory for this test's files, private to this process.
 std::string temp_dir(const std::string& test_name);
 
 }  // namespace stochtex::test

@@ -42,6 +42,10 @@ Image render(const Texture& texture, const RenderSettings& settings, const Progr
         throw Error("render: size must be positive, got " + std::to_string(settings.width) + "x" +
                     std::to_string(settings.height));
     if (!(settings.units_per_pixel > 0)) throw Error("render: units per pixel must be positive");
+    // A whole-image render holds 12 bytes per pixel; beyond 2^28 pixels (3 GiB) use tiles.
+    if (double(settings.width) * settings.height > double(1 << 28))
+        throw Error("render: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                    " is too large for one image (at most 2^28 pixels); render it in tiles");
     Image image(settings.width, settings.height, 3);
 
     // Workers take bands of rows from a shared counter; each pixel depends only on its own

@@ -1,7 +1,7 @@
 // stochtex — errors.
 // The core reports every problem with bad input (a file, a field, an option) by throwing
 // stochtex::Error whose message names the thing and the problem, e.g.
-//   "texture.stex: field 'parameters.band_weights[1]': expected 9 numbers, got 7".
+//   "t.stex: parameters.band_weights[1]: expected an array of numbers, got a string".
 // Front-ends catch it once: the CLI prints it and exits non-zero, the OIIO plugin turns it into
 // errorfmt(). Nothing in the core prints or exits.
 #pragma once
