@@ -2,6 +2,7 @@
 #include <stochtex/texture.h>
 
 #include "wavelet_noise.h"
+#include "wavelet_texture.h"
 
 #include <cmath>
 #include <cstdio>
@@ -51,11 +52,8 @@ std::string describe(const TextureDescription& d)
         for (std::size_t j = 0; j < w[0].size(); ++j)
             out << format("%4.0f  [1/%-5.0f, 1/%-5.0f)", double(j), std::ldexp(1.0, int(j) + 2), std::ldexp(1.0, int(j) + 1))
                 << format("  %8.5f  %8.5f  %8.5f", w[0][j], w[1][j], w[2][j]) << "\n";
-        for (int c = 0; c < 3; ++c) {
-            double sum = 0;
-            for (double weight : w[c]) sum += weight * weight;
-            out << "sigma_M[" << c << "]   " << format("%.5f", std::sqrt(band_variance * sum)) << "\n";
-        }
+        for (int c = 0; c < 3; ++c)
+            out << "sigma_M[" << c << "]   " << format("%.5f", wavelet_channel_sigma(w[c])) << "\n";
     }
     const Rgb mean = make_texture(d)->mean();
     out << "texture mean " << format("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";

@@ -3,7 +3,7 @@
 #include <stochtex/stex_file.h>
 
 #include "histogram_map.h"
-#include "wavelet_noise.h"
+#include "wavelet_texture.h"
 
 #include <Eigen/Geometry>
 
@@ -23,13 +23,6 @@ Eigen::Matrix3d to_eigen(const std::array<std::array<double, 3>, 3>& m)
 }
 
 double lerp(double a, double b, double t) { return a + (b - a) * t; }
-
-double channel_sigma(const std::vector<double>& weights)
-{
-    double sum = 0;
-    for (double w : weights) sum += w * w;
-    return std::sqrt(WaveletNoise2D::shared().variance() * sum);
-}
 
 /// A channel's map sampled at the knots `z`; a Gaussian channel (no map) is the line σ·z.
 std::vector<double> map_values_at(const HistogramMap& map, double sigma, const std::vector<double>& z)
@@ -107,8 +100,8 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
             if (!ha.enabled() && !hb.enabled()) continue;
             // Interpolate the two maps on one set of knots (a's, else b's).
             const std::vector<double>& z = ha.enabled() ? ha.z : hb.z;
-            const std::vector<double> va = map_values_at(ha, channel_sigma(wa[c]), z);
-            const std::vector<double> vb = map_values_at(hb, channel_sigma(wb[c]), z);
+            const std::vector<double> va = map_values_at(ha, wavelet_channel_sigma(wa[c]), z);
+            const std::vector<double> vb = map_values_at(hb, wavelet_channel_sigma(wb[c]), z);
             HistogramMap& map = result.histograms[c];
             map.z = z;
             map.value.resize(z.size());

@@ -12,17 +12,19 @@ namespace {
 
 std::array<double, 3> band_sigmas(const WaveletParameters& parameters)
 {
-    const double band_variance = WaveletNoise2D::shared().variance();
     std::array<double, 3> sigma{};
-    for (int c = 0; c < 3; ++c) {
-        double sum = 0;
-        for (double w : parameters.band_weights[c]) sum += w * w;
-        sigma[c] = std::sqrt(band_variance * sum);
-    }
+    for (int c = 0; c < 3; ++c) sigma[c] = wavelet_channel_sigma(parameters.band_weights[c]);
     return sigma;
 }
 
 }  // namespace
+
+double wavelet_channel_sigma(const std::vector<double>& band_weights)
+{
+    double sum = 0;
+    for (double w : band_weights) sum += w * w;
+    return std::sqrt(WaveletNoise2D::shared().variance() * sum);
+}
 
 WaveletTexture::WaveletTexture(const TextureDescription& description)
     : Texture(description),

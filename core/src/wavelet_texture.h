@@ -15,6 +15,9 @@
 
 namespace stochtex {
 
+/// σ_M of one channel (eq. 2): sqrt(σ_N² Σ_j w_j²), with this build's measured 2D σ_N².
+double wavelet_channel_sigma(const std::vector<double>& band_weights);
+
 class WaveletTexture final : public Texture {
 public:
     explicit WaveletTexture(const TextureDescription& description);
