@@ -46,6 +46,14 @@ Image render_at_exemplar_scale(const TextureDescription& d, int size, int thread
     return render(*make_texture(d), settings);
 }
 
+/// The committed exemplar (no ../shared needed), analysed with the given histogram mode.
+TextureDescription analyse_committed_exemplar(HistogramMode histogram)
+{
+    AnalysisOptions options;
+    options.histogram = histogram;
+    return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
+}
+
 double variance(const std::vector<float>& values)
 {
     double sum = 0, sum_sq = 0;
@@ -233,8 +241,7 @@ TEST(WaveletAnalysis, WorksOnTheCommittedExemplarAndNonSquarePhotos)
 
 TEST(WaveletTexture, RenderIsIdenticalForAnyThreadCount)
 {
-    const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
-    const TextureDescription d = analyze(photo, AnalysisOptions{});
+    const TextureDescription d = analyse_committed_exemplar(HistogramMode::automatic);
     for (bool solid : {false, true}) {
         RenderSettings settings;
         settings.width = settings.height = 96;
@@ -250,10 +257,7 @@ TEST(WaveletTexture, RenderIsIdenticalForAnyThreadCount)
 
 TEST(WaveletTexture, MinificationConvergesToTheMean)
 {
-    const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
-    AnalysisOptions options;
-    options.histogram = HistogramMode::on;
-    const TextureDescription d = analyze(photo, options);
+    const TextureDescription d = analyse_committed_exemplar(HistogramMode::on);
     const auto texture = make_texture(d);
     const Rgb mean = texture->mean();
     const Rgb far = texture->eval({0.3, 0.7}, Footprint2D::square(1e6));
@@ -269,10 +273,7 @@ TEST(WaveletTexture, MinificationConvergesToTheMean)
 TEST(WaveletTexture, BandClampingBeatsPointSamplingAgainstSupersampledReference)
 {
     // Filtering error against a 16×16 supersampled box reference, 4 exemplar pixels per pixel.
-    const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
-    AnalysisOptions options;
-    options.histogram = HistogramMode::off;
-    const TextureDescription d = analyze(photo, options);
+    const TextureDescription d = analyse_committed_exemplar(HistogramMode::off);
     const auto texture = make_texture(d);
     constexpr int size = 48, super = 16;
     const double step = 4.0 / d.pixels_per_unit;
@@ -305,10 +306,7 @@ TEST(WaveletTexture, BandClampingBeatsPointSamplingAgainstSupersampledReference)
 
 TEST(WaveletTexture, SolidSliceHasThePhotoVariance)
 {
-    const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
-    AnalysisOptions options;
-    options.histogram = HistogramMode::off;
-    const TextureDescription d = analyze(photo, options);
+    const TextureDescription d = analyse_committed_exemplar(HistogramMode::off);
     RenderSettings settings;
     settings.width = settings.height = 512;
     settings.units_per_pixel = 1.0 / d.pixels_per_unit;

@@ -57,13 +57,18 @@ WaveletTexture::WaveletTexture(const TextureDescription& description)
 template <class BandNoise>
 Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
 {
+    // The fade depends on the band only, not the channel: compute it once per evaluation.
+    constexpr std::size_t max_bands = 24;  // validate() bounds the band count
+    float fades[max_bands];
+    const std::size_t band_count = bands_[0].size();
+    for (std::size_t j = 0; j < band_count; ++j) fades[j] = band_fade(int(j), footprint_px);
     std::array<double, 3> z{}, dropped{};
     for (int c = 0; c < 3; ++c) {
         double kept = 0, dropped_variance = 0;
         const auto& bands = bands_[c];
         for (std::size_t j = 0; j < bands.size(); ++j) {
             const double weight = bands[j].weight;
-            const float fade = band_fade(int(j), footprint_px);
+            const float fade = fades[j];
             if (fade < 1) dropped_variance += (1 - double(fade) * fade) * weight * weight;
             if (fade > 0 && weight != 0) kept += fade * weight * band_noise(bands[j]);
         }
