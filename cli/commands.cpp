@@ -76,7 +76,12 @@ int RenderCommand::run() const
     settings.z = z;
     settings.filter = !no_filter;
     settings.threads = threads;
-    const auto texture_object = make_texture(description);
+    if (tileable && solid) throw Error("--tileable: solid renders are not periodic; drop --solid or --tileable");
+    // A tileable image is exactly one period of the periodic texture: it wraps without a seam.
+    const auto texture_object =
+        tileable ? make_periodic_texture(description, {settings.width * settings.units_per_pixel,
+                                                       settings.height * settings.units_per_pixel})
+                 : make_texture(description);
     const auto start = std::chrono::steady_clock::now();
     const Image image = stochtex::render(*texture_object, settings, terminal_progress_bar());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

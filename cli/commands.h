@@ -29,6 +29,7 @@ struct RenderCommand {
     bool solid = false;
     double z = 0;
     bool no_filter = false;
+    bool tileable = false;  // the image is one period of a periodic texture
     int threads = 0;
     std::int64_t seed = -1; // -1: the texture's own seed
     int run() const;

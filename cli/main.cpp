@@ -50,6 +50,8 @@ int main(int argc, char** argv)
     r->add_flag("--solid", render.solid, "Evaluate the solid (3D) texture on the plane w = Z");
     r->add_option("--z", render.z, "Depth of the solid slice (texture units)")->capture_default_str();
     r->add_flag("--no-filter", render.no_filter, "Point-sample instead of filtering each pixel's footprint");
+    r->add_flag("--tileable", render.tileable,
+                "Make the image one period of the texture, so it tiles without a seam (band frequencies snap to fit)");
     r->add_option("--threads", render.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
     r->add_option("--seed", render.seed, "Override the texture's seed")->check(CLI::NonNegativeNumber);
 

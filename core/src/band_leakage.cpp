@@ -21,7 +21,7 @@ double sinc(double f) { return f == 0 ? 1.0 : std::sin(M_PI * f) / (M_PI * f); }
 std::vector<std::vector<double>> compute_leakage(int band_count)
 {
     const WaveletNoise2D& noise = WaveletNoise2D::shared();
-    const int n = noise.tile_size();
+    const int n = noise.period_x();  // the shared tile is square
     const std::vector<std::complex<float>> spectrum = real_fft_2d(noise.coefficients(), n, n);
     const int half = n / 2 + 1;
     // The spline's transfer function falls as 1/f³; aliases beyond ±2 lattice periods carry

@@ -2,6 +2,8 @@
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
 
+#include <cmath>
+
 #include "wavelet_texture.h"
 
 namespace stochtex {
@@ -11,6 +13,15 @@ std::unique_ptr<Texture> make_texture(const TextureDescription& description)
     validate(description, "texture description");
     if (description.model == "wavelet") return std::make_unique<WaveletTexture>(description);
     throw Error("texture description: model '" + description.model + "' has no implementation in this build");
+}
+
+std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period)
+{
+    validate(description, "texture description");
+    for (double p : period)
+        if (!(p > 0) || !std::isfinite(p)) throw Error("periodic texture: the period must be positive and finite");
+    if (description.model == "wavelet") return std::make_unique<WaveletTexture>(description, period);
+    throw Error("periodic texture: model '" + description.model + "' has no periodic form in this build");
 }
 
 }  // namespace stochtex

@@ -3,6 +3,10 @@
 #include "random.h"
 
 #include <cassert>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
 
 namespace stochtex {
 
@@ -45,20 +49,23 @@ void down_up_sample(const float* from, float* to, int n, int stride)
     }
 }
 
-/// Builds a d-dimensional periodic coefficient tile (d = 2 or 3).
-std::vector<float> make_coefficients(int n, int dims, std::uint64_t seed)
+/// Builds a periodic coefficient tile of size[0] × size[1] (× size[2] if dims = 3) cells.
+std::vector<float> make_coefficients(const int* size, int dims, std::uint64_t seed)
 {
-    const std::size_t count = dims == 2 ? std::size_t(n) * n : std::size_t(n) * n * n;
+    std::size_t count = 1;
+    for (int axis = 0; axis < dims; ++axis) count *= std::size_t(size[axis]);
     std::vector<float> noise(count);
     SplitMix64 rng(seed);
     for (float& value : noise) value = float(rng.gaussian());
 
     // Subtract the half-resolution part, one axis at a time (separable filters).
     std::vector<float> smooth = noise;
-    std::vector<float> line(n), filtered(n);
-    const std::size_t strides[3] = {1, std::size_t(n), std::size_t(n) * n};
+    std::size_t strides[3] = {1, 1, 1};
+    for (int axis = 1; axis < dims; ++axis) strides[axis] = strides[axis - 1] * std::size_t(size[axis - 1]);
     for (int axis = 0; axis < dims; ++axis) {
         const std::size_t stride = strides[axis];
+        const int n = size[axis];
+        std::vector<float> line(n), filtered(n);
         for (std::size_t start = 0; start < count; ++start) {
             // Visit each line along `axis` once: starts are the indices whose axis coordinate is 0.
             if ((start / stride) % n != 0) continue;
@@ -70,40 +77,59 @@ std::vector<float> make_coefficients(int n, int dims, std::uint64_t seed)
     for (std::size_t i = 0; i < count; ++i) noise[i] -= smooth[i];
 
     // Cook–DeRose: even and odd lattice positions have different variance after the filtering;
-    // adding a copy shifted by an odd offset evens it out.
-    const int shift = n / 2 + 1;
+    // adding a copy shifted by an odd offset along every axis evens it out.
     std::vector<float> shifted(count);
-    if (dims == 2) {
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                shifted[std::size_t(y) * n + x] = noise[std::size_t(wrap(y + shift, n)) * n + wrap(x + shift, n)];
-    } else {
-        for (int z = 0; z < n; ++z)
-            for (int y = 0; y < n; ++y)
-                for (int x = 0; x < n; ++x)
-                    shifted[(std::size_t(z) * n + y) * n + x] =
-                        noise[(std::size_t(wrap(z + shift, n)) * n + wrap(y + shift, n)) * n + wrap(x + shift, n)];
+    for (std::size_t i = 0; i < count; ++i) {
+        std::size_t source = 0;
+        for (int axis = 0; axis < dims; ++axis) {
+            const int n = size[axis];
+            const int coordinate = int((i / strides[axis]) % std::size_t(n));
+            source += std::size_t(wrap(coordinate + n / 2 + 1, n)) * strides[axis];
+        }
+        shifted[i] = noise[source];
     }
     for (std::size_t i = 0; i < count; ++i) noise[i] += shifted[i];
     return noise;
 }
 
+/// Exact spatial mean of N² over one period of a 2D tile. With N = Σ c_kl B(x−k) B(y−l),
+/// ∫∫N² = Σ_ab A(a) A(b) R(a, b): R the coefficients' periodic autocorrelation and A the
+/// quadratic B-spline's autocorrelation at integer lags (the quintic B-spline: 11/20, 13/60,
+/// 1/120 at lags 0, ±1, ±2).
+double exact_variance_2d(const std::vector<float>& c, int nx, int ny)
+{
+    constexpr double spline_autocorrelation[5] = {1.0 / 120, 13.0 / 60, 11.0 / 20, 13.0 / 60, 1.0 / 120};
+    double sum = 0;
+    for (int b = -2; b <= 2; ++b)
+        for (int a = -2; a <= 2; ++a) {
+            double r = 0;
+            for (int y = 0; y < ny; ++y) {
+                const float* row = &c[std::size_t(y) * nx];
+                const float* other = &c[std::size_t(wrap(y + b, ny)) * nx];
+                for (int x = 0; x < nx; ++x) r += double(row[x]) * other[wrap(x + a, nx)];
+            }
+            sum += spline_autocorrelation[a + 2] * spline_autocorrelation[b + 2] * r;
+        }
+    return sum / (double(nx) * ny);
+}
+
 }  // namespace
 
-WaveletNoise2D::WaveletNoise2D(int tile_size, std::uint64_t tile_seed)
-    : size_(tile_size), mask_(tile_size - 1), coefficients_(make_coefficients(tile_size, 2, tile_seed))
+WaveletNoise2D::WaveletNoise2D(int period_x, int period_y, std::uint64_t tile_seed)
+    : nx_(period_x), ny_(period_y), inverse_nx_(1.0 / period_x), inverse_ny_(1.0 / period_y),
+      mask_x_((period_x & (period_x - 1)) == 0 ? period_x - 1 : -1),
+      mask_y_((period_y & (period_y - 1)) == 0 ? period_y - 1 : -1)
 {
-    assert((tile_size & mask_) == 0 && "tile size must be a power of two");
-    // σ_N²: mean of N² on a 4×4-per-cell grid over one period. The integrand is a smooth
-    // periodic function, so this regular average is accurate to far below sampling noise.
-    constexpr int sub = 4;
-    double sum = 0;
-    for (int j = 0; j < size_ * sub; ++j)
-        for (int i = 0; i < size_ * sub; ++i) {
-            const double value = eval((i + 0.5) / sub, (j + 0.5) / sub);
-            sum += value * value;
-        }
-    variance_ = sum / (double(size_) * size_ * sub * sub);
+    if (period_x < 4 || period_y < 4 || period_x % 2 || period_y % 2)
+        throw std::invalid_argument("wavelet noise tile: periods must be even and at least 4");
+    const int size[2] = {nx_, ny_};
+    coefficients_ = make_coefficients(size, 2, tile_seed);
+    const int padded_width = nx_ + 3;
+    padded_.resize(std::size_t(padded_width) * (ny_ + 3));
+    for (int y = 0; y < ny_ + 3; ++y)
+        for (int x = 0; x < padded_width; ++x)
+            padded_[std::size_t(y) * padded_width + x] = coefficients_[std::size_t(wrap(y, ny_)) * nx_ + wrap(x, nx_)];
+    variance_ = exact_variance_2d(coefficients_, nx_, ny_);
 
     for (int j = 0; j < balanced_phase_count; ++j) {
         // Bracket the root between the lowest and highest grid variance over one phase period,
@@ -140,28 +166,71 @@ double WaveletNoise2D::grid_variance(int j, double phase) const
     return sum / (double(cells) * per_cell * cells * per_cell);
 }
 
+namespace {
+
+/// floor() as an integer without a libm call (x86-64's baseline has no rounding instruction).
+inline std::int64_t floor_to_int(double x)
+{
+    const auto i = std::int64_t(x);
+    return i - (double(i) > x);
+}
+
+/// The quadratic B-spline weights at x and the index of the first of its three coefficients,
+/// wrapped into [0, n] (n only by rounding at exact multiples of the period; the padded tile
+/// holds columns up to n + 2).
+struct WrappedSpline {
+    std::int64_t first;
+    float w[3];
+    /// mask = n − 1 when n is a power of two (the common case: one AND instead of a division).
+    WrappedSpline(double x, int n, double inverse_n, int mask)
+    {
+        const double shifted = x - 0.5;
+        const std::int64_t base = floor_to_int(shifted);
+        const float t = float(shifted - double(base));
+        first = mask >= 0 ? (base & mask) : base - n * floor_to_int(double(base) * inverse_n);
+        w[0] = 0.5f * (1 - t) * (1 - t);
+        w[2] = 0.5f * t * t;
+        w[1] = 1 - w[0] - w[2];
+    }
+};
+
+}  // namespace
+
 float WaveletNoise2D::eval(double x, double y) const
 {
-    const QuadraticBSplineWeights wx(x), wy(y);
+    const WrappedSpline wx(x, nx_, inverse_nx_, mask_x_), wy(y, ny_, inverse_ny_, mask_y_);
+    const std::size_t width = std::size_t(nx_) + 3;
+    const float* row = &padded_[std::size_t(wy.first) * width + std::size_t(wx.first)];
     float result = 0;
-    for (int j = 0; j < 3; ++j) {
-        const float* row = &coefficients_[std::size_t((wy.first + j) & mask_) * size_];
-        const float row_sum = wx.w[0] * row[(wx.first) & mask_] + wx.w[1] * row[(wx.first + 1) & mask_] +
-                              wx.w[2] * row[(wx.first + 2) & mask_];
-        result += wy.w[j] * row_sum;
-    }
+    for (int j = 0; j < 3; ++j, row += width)
+        result += wy.w[j] * (wx.w[0] * row[0] + wx.w[1] * row[1] + wx.w[2] * row[2]);
     return result;
 }
 
 const WaveletNoise2D& WaveletNoise2D::shared()
 {
-    static const WaveletNoise2D tile(shared_tile_2d, shared_tile_seed);
+    static const WaveletNoise2D tile(shared_tile_2d, shared_tile_2d, shared_tile_seed);
     return tile;
 }
 
-WaveletNoise3D::WaveletNoise3D(int tile_size, std::uint64_t tile_seed)
-    : size_(tile_size), mask_(tile_size - 1), coefficients_(make_coefficients(tile_size, 3, tile_seed + 1))
+const WaveletNoise2D& WaveletNoise2D::with_period(int period_x, int period_y)
 {
+    if (period_x == shared_tile_2d && period_y == shared_tile_2d) return shared();
+    if (period_x > 1024 || period_y > 1024)
+        throw std::invalid_argument("wavelet noise tile: periods above 1024 are not cached");
+    static std::mutex mutex;
+    static std::map<std::pair<int, int>, std::unique_ptr<const WaveletNoise2D>> tiles;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& tile = tiles[{period_x, period_y}];
+    if (!tile) tile = std::make_unique<const WaveletNoise2D>(period_x, period_y, mix_seed(shared_tile_seed, period_x, period_y));
+    return *tile;
+}
+
+WaveletNoise3D::WaveletNoise3D(int tile_size, std::uint64_t tile_seed)
+    : size_(tile_size), mask_(tile_size - 1)
+{
+    const int size[3] = {tile_size, tile_size, tile_size};
+    coefficients_ = make_coefficients(size, 3, tile_seed + 1);
     assert((tile_size & mask_) == 0 && "tile size must be a power of two");
     constexpr int sub = 2;
     double sum = 0;

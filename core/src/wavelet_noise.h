@@ -19,16 +19,21 @@ namespace stochtex {
 
 class WaveletNoise2D {
 public:
-    /// The shared process-wide tile (built once, thread-safe).
+    /// The shared process-wide 256² tile (built once, thread-safe).
     static const WaveletNoise2D& shared();
-    WaveletNoise2D(int tile_size, std::uint64_t tile_seed);
+    /// A tile of period_x × period_y lattice cells (both even, 4 … 1024), built on first use
+    /// and kept for the life of the process (thread-safe); 256 × 256 is shared(). Periodic
+    /// textures use these to fit a whole number of tiles into an image's period.
+    static const WaveletNoise2D& with_period(int period_x, int period_y);
+    WaveletNoise2D(int period_x, int period_y, std::uint64_t tile_seed);
 
-    /// N(x, y), x and y in lattice units. Periodic with period tile_size().
+    /// N(x, y), x and y in lattice units. Periodic with period (period_x(), period_y()).
     float eval(double x, double y) const;
-    int tile_size() const { return size_; }
-    /// The B-spline coefficients, tile_size² floats, rows contiguous (for spectral analysis).
+    int period_x() const { return nx_; }
+    int period_y() const { return ny_; }
+    /// The B-spline coefficients, period_x · period_y floats, rows contiguous (for spectral analysis).
     const std::vector<float>& coefficients() const { return coefficients_; }
-    /// Spatial mean of N² over one period (σ_N² of this tile).
+    /// Spatial mean of N² over one period (σ_N² of this tile), exact.
     double variance() const { return variance_; }
 
     /// Sampled on a regular grid of spacing 2^-j lattice units, the variance of N depends on
@@ -42,9 +47,13 @@ public:
 private:
     double grid_variance(int j, double phase) const;
 
-    int size_;
-    int mask_;
+    int nx_, ny_;
+    double inverse_nx_, inverse_ny_;
+    int mask_x_, mask_y_;  // period − 1 for power-of-two periods, else −1
     std::vector<float> coefficients_;
+    /// The coefficients with three more columns and rows (wrapped copies), so that eval()
+    /// wraps a lattice index once and then reads its 3 × 3 neighbourhood without wrapping.
+    std::vector<float> padded_;
     double variance_ = 0;
     double balanced_phase_[balanced_phase_count] = {};
 };

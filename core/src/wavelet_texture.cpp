@@ -26,29 +26,78 @@ double wavelet_channel_sigma(const std::vector<double>& band_weights)
     return std::sqrt(WaveletNoise2D::shared().variance() * sum);
 }
 
-WaveletTexture::WaveletTexture(const TextureDescription& description)
+namespace {
+
+/// How a periodic texture lays out one band along one axis: `repeats` copies of a tile of
+/// `tile` lattice cells fill the period. The lattice period tile·repeats is the closest we can
+/// get to the band's natural one, `natural` cells (period × ppu · 2^-j).
+struct BandLattice {
+    int tile = 0;  // 0: the band does not fit the period
+    int repeats = 1;
+};
+
+BandLattice band_lattice(double natural)
+{
+    constexpr int shared_tile = 256, largest_tile = 1024;
+    // A band needs a few lattice cells to exist at all: its wavelengths are 2–4 cells.
+    if (!(natural >= 3)) return {};
+    const double cells = std::round(natural);
+    if (std::fmod(cells, shared_tile) == 0) return {shared_tile, int(cells / shared_tile)};
+    const int repeats = int(std::ceil(natural / largest_tile));
+    const int tile = std::max(4, 2 * int(std::lround(natural / (2.0 * repeats))));
+    return {tile, repeats};
+}
+
+}  // namespace
+
+WaveletTexture::WaveletTexture(const TextureDescription& description) : WaveletTexture(description, nullptr) {}
+
+WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2& period)
+    : WaveletTexture(description, &period)
+{
+}
+
+WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2* period)
     : Texture(description),
       sigma_m_(band_sigmas(*description.wavelet)),
       solid_gain_(std::sqrt(WaveletNoise2D::shared().variance() / WaveletNoise3D::shared().variance())),
       colour_(description, sigma_m_)
 {
     const auto& weights = description.wavelet->band_weights;
-    // Offsets cover a whole tile; the 3D tile is smaller, so 3D takes each offset modulo it.
-    const double tile = WaveletNoise2D::shared().tile_size();
-    for (int c = 0; c < 3; ++c) {
-        const int offset_channel = description.colour_mode == ColourMode::rgb_shared ? 0 : c;
-        for (std::size_t j = 0; j < weights[c].size(); ++j) {
+    const WaveletNoise2D& shared = WaveletNoise2D::shared();
+    present_bands_ = weights[0].size();
+    for (std::size_t j = 0; j < weights[0].size(); ++j) {
+        const double natural_scale = std::ldexp(description.pixels_per_unit, -int(j));
+        const WaveletNoise2D* tile = &shared;
+        double scale[2] = {natural_scale, natural_scale};
+        if (period) {
+            const BandLattice x = band_lattice((*period)[0] * natural_scale);
+            const BandLattice y = band_lattice((*period)[1] * natural_scale);
+            if (x.tile == 0 || y.tile == 0) {
+                // Kept in bands_ (its weight counts as dropped variance) but never synthesised.
+                present_bands_ = std::min(present_bands_, j);
+            } else {
+                tile = &WaveletNoise2D::with_period(x.tile, y.tile);
+                scale[0] = x.tile * x.repeats / (*period)[0];
+                scale[1] = y.tile * y.repeats / (*period)[1];
+            }
+        }
+        const double gain = std::sqrt(shared.variance() / tile->variance());
+        for (int c = 0; c < 3; ++c) {
+            const int offset_channel = description.colour_mode == ColourMode::rgb_shared ? 0 : c;
             SplitMix64 rng(mix_seed(description.seed, j, offset_channel));
-            Band band{weights[c][j], std::ldexp(description.pixels_per_unit, -int(j)), {}};
+            Band band{weights[c][j], tile, gain, {scale[0], scale[1]}, natural_scale, {}};
             // Whole-lattice random offsets decorrelate bands and channels; the fractional part
             // of the fine bands is the balanced phase, so a render at the photo's pixel scale
-            // (pixel centres at (x + ½)·2^-j) shows each band with its true variance.
+            // (pixel centres at (x + ½)·2^-j) shows each band with its true variance. Offsets
+            // cover a whole tile; the 3D tile is smaller, so 3D takes each offset modulo it.
             const bool balanced = j < std::size_t(WaveletNoise2D::balanced_phase_count);
             const double grid_phase = 0.5 * std::ldexp(1.0, -int(j));
-            for (double& o : band.offset)
-                o = balanced ? std::floor(tile * rng.uniform()) +
-                                   WaveletNoise2D::shared().balanced_phase(int(j)) - grid_phase
-                             : tile * rng.uniform();
+            for (int axis = 0; axis < 3; ++axis) {
+                const double cells = axis == 1 ? tile->period_y() : tile->period_x();
+                band.offset[axis] = balanced ? std::floor(cells * rng.uniform()) + tile->balanced_phase(int(j)) - grid_phase
+                                             : cells * rng.uniform();
+            }
             bands_[c].push_back(band);
         }
     }
@@ -61,7 +110,7 @@ Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise
     constexpr std::size_t max_bands = 24;  // validate() bounds the band count
     float fades[max_bands];
     const std::size_t band_count = bands_[0].size();
-    for (std::size_t j = 0; j < band_count; ++j) fades[j] = band_fade(int(j), footprint_px);
+    for (std::size_t j = 0; j < band_count; ++j) fades[j] = j < present_bands_ ? band_fade(int(j), footprint_px) : 0.0f;
     std::array<double, 3> z{}, dropped{};
     for (int c = 0; c < 3; ++c) {
         double kept = 0, dropped_variance = 0;
@@ -83,10 +132,9 @@ Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise
 
 Rgb WaveletTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 {
-    const WaveletNoise2D& noise = WaveletNoise2D::shared();
     const double footprint_px = footprint.major_axis() * description().pixels_per_unit;
     return synthesize(footprint_px, 1.0, [&](const Band& band) {
-        return noise.eval(uv[0] * band.frequency_scale + band.offset[0], uv[1] * band.frequency_scale + band.offset[1]);
+        return band.gain * band.tile->eval(uv[0] * band.scale[0] + band.offset[0], uv[1] * band.scale[1] + band.offset[1]);
     });
 }
 
@@ -96,8 +144,8 @@ Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
     const double footprint_px = point.major_axis() * description().pixels_per_unit;
     const auto& p = point.p;
     return synthesize(footprint_px, solid_gain_, [&](const Band& band) {
-        return noise.eval(p[0] * band.frequency_scale + band.offset[0], p[1] * band.frequency_scale + band.offset[1],
-                          p[2] * band.frequency_scale + band.offset[2]);
+        const double s = band.solid_scale;
+        return noise.eval(p[0] * s + band.offset[0], p[1] * s + band.offset[1], p[2] * s + band.offset[2]);
     });
 }
 

@@ -5,9 +5,14 @@
 // channels only in the rgb-shared colour mode), then ColourMapping. Solid textures use 3D
 // bands with weights scaled by sqrt(σ_N²(2D) / σ_N²(3D)) so every band keeps the variance the
 // photo gave it; a planar slice of a 3D band has the 3D band's variance (stationarity).
+//
+// Periodic form (make_periodic_texture): each band's 2D lattice is stretched so that a whole
+// number of tiles of a fitting period covers the requested period (see band_lattice()), and
+// normalised by its tile's σ_N so the band keeps its weight's variance.
 #pragma once
 
 #include "colour_mapping.h"
+#include "wavelet_noise.h"
 
 #include <stochtex/texture.h>
 
@@ -21,6 +26,8 @@ double wavelet_channel_sigma(const std::vector<double>& band_weights);
 class WaveletTexture final : public Texture {
 public:
     explicit WaveletTexture(const TextureDescription& description);
+    /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
+    WaveletTexture(const TextureDescription& description, const Vec2& period);
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
@@ -32,13 +39,20 @@ public:
 private:
     struct Band {
         double weight;
-        double frequency_scale;  // ppu · 2^-j: texture units → lattice units
-        double offset[3];        // lattice units
+        const WaveletNoise2D* tile;  // the 2D noise (shared tile unless periodic)
+        double gain;                 // σ_N(shared) / σ_N(tile): same variance for any tile
+        double scale[2];             // 2D: texture units → lattice units, per axis (ppu · 2^-j)
+        double solid_scale;          // 3D: texture units → lattice units (ppu · 2^-j)
+        double offset[3];            // lattice units
     };
+    WaveletTexture(const TextureDescription& description, const Vec2* period);
     template <class BandNoise>
     Rgb synthesize(double footprint_px, double gain, const BandNoise& band_noise) const;
 
     std::array<std::vector<Band>, 3> bands_;
+    /// Bands [0, present_bands_) are synthesised; coarser ones do not fit a periodic texture's
+    /// period and count as filtered away.
+    std::size_t present_bands_ = 0;
     std::array<double, 3> sigma_m_{};
     double solid_gain_ = 1;
     ColourMapping colour_;

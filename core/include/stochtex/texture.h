@@ -38,4 +38,13 @@ private:
 /// Creates the model named by description.model. Throws Error if the description is invalid.
 std::unique_ptr<Texture> make_texture(const TextureDescription& description);
 
+/// The same texture made periodic in 2D: eval() repeats with period (period[0], period[1])
+/// texture units, so an image covering exactly one period tiles without a seam (the OIIO
+/// plugin's virtual image, baked maps). Each band's frequency is snapped so that a whole number
+/// of its lattice cells fits the period (≤ 0.1 % change for bands ≥ 512 cells per period);
+/// bands too coarse to fit the period at all are treated as filtered away (the histogram map
+/// accounts for their variance, as for minification). eval_solid() is not periodic.
+/// Throws Error if the model has no periodic form or the period is not positive and finite.
+std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period);
+
 }  // namespace stochtex
