@@ -494,3 +494,41 @@ TEST(TextureDescription, KnownModels)
 {
     EXPECT_EQ(stochtex::known_models(), std::vector<std::string>{"wavelet"});
 }
+
+// ---- The optional "image" block (the OIIO plugin's virtual image) --------------------------------
+
+TEST(StexImageLayout, OptionalBlockRoundTripsAndPartialBlocksTakeDefaults)
+{
+    TextureDescription d = sample();
+    EXPECT_FALSE(stochtex::parse_stex(stochtex::format_stex(d), "t.stex").image.has_value());
+    d.image = stochtex::ImageLayout{4096, 2048, 32, 128, 0.5, "Y"};
+    const std::string text = stochtex::format_stex(d);
+    const TextureDescription back = stochtex::parse_stex(text, "t.stex");
+    ASSERT_TRUE(back.image.has_value());
+    EXPECT_EQ(back.image->width, 4096);
+    EXPECT_EQ(back.image->height, 2048);
+    EXPECT_EQ(back.image->tile_width, 32);
+    EXPECT_EQ(back.image->tile_height, 128);
+    EXPECT_EQ(back.image->scale, 0.5);
+    EXPECT_EQ(back.image->channels, "Y");
+    EXPECT_EQ(stochtex::format_stex(back), text);
+
+    const TextureDescription partial =
+        stochtex::parse_stex(edited([](Json& j) { j["image"] = {{"width", 1000}}; }), "t.stex");
+    ASSERT_TRUE(partial.image.has_value());
+    EXPECT_EQ(partial.image->width, 1000);
+    EXPECT_EQ(partial.image->height, stochtex::ImageLayout{}.height);
+    EXPECT_EQ(partial.image->channels, "RGB");
+}
+
+TEST(StexImageLayout, BadValuesNameTheField)
+{
+    auto with_image = [](Json image) { return parse_error(edited([&](Json& j) { j["image"] = image; })); };
+    EXPECT_EQ(with_image({{"width", 0}}), "t.stex: image.width: must be in [1, 1048576], got 0");
+    EXPECT_EQ(with_image({{"tile_width", 100}}), "t.stex: image.tile_width: must be a power of two in [8, 4096], got 100");
+    EXPECT_EQ(with_image({{"channels", "XYZ"}}), "t.stex: image.channels: expected \"RGB\", \"RGBA\" or \"Y\", got \"XYZ\"");
+    EXPECT_EQ(with_image({{"scale", -1}}), "t.stex: image.scale: must be positive, got -1");
+    EXPECT_EQ(with_image({{"height", 2.5}}).rfind("t.stex: image.height: ", 0), 0u);
+    EXPECT_TRUE(starts_with(with_image({{"tiles", 64}}), "t.stex: image.tiles: unknown field (expected one of: width"));
+    EXPECT_EQ(with_image(Json::array()).rfind("t.stex: image: expected an object", 0), 0u) << with_image(Json::array());
+}

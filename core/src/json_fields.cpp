@@ -155,17 +155,27 @@ void Field::expect(bool ok, const char* wanted) const
     if (!ok) fail(std::string("expected ") + wanted + ", got " + describe(*value_));
 }
 
-void Field::expect_keys(std::initializer_list<const char*> keys) const
+void Field::expect_keys(std::initializer_list<const char*> keys, std::initializer_list<const char*> optional) const
 {
     expect(value_->is_object(), "an object");
     // Unknown keys first: a misspelt key is then reported as such, not as the missing one.
+    auto listed = [](std::initializer_list<const char*> list, const std::string& key) {
+        return std::find(list.begin(), list.end(), key) != list.end();
+    };
     for (auto member = value_->begin(); member != value_->end(); ++member) {
-        if (std::find(keys.begin(), keys.end(), member.key()) != keys.end()) continue;
+        if (listed(keys, member.key()) || listed(optional, member.key())) continue;
         std::string known;
         for (const char* key : keys) known += (known.empty() ? "" : ", ") + std::string(key);
+        for (const char* key : optional) known += (known.empty() ? "" : ", ") + std::string(key) + " (optional)";
         json_fields::fail(*source_, child_path(path_, member.key()), "unknown field (expected one of: " + known + ")");
     }
     for (const char* key : keys) (*this)[key];
+}
+
+bool Field::contains(const char* key) const
+{
+    expect(value_->is_object(), "an object");
+    return value_->contains(key);
 }
 
 Field Field::operator[](const char* key) const

@@ -40,8 +40,10 @@ public:
 
     [[noreturn]] void fail(const std::string& problem) const;
 
-    /// Requires an object whose keys are exactly `keys`, in any order.
-    void expect_keys(std::initializer_list<const char*> keys) const;
+    /// Requires an object whose keys are exactly `keys`, in any order, plus any of `optional`.
+    void expect_keys(std::initializer_list<const char*> keys, std::initializer_list<const char*> optional = {}) const;
+    /// Whether this object has the member `key` (for optional fields).
+    bool contains(const char* key) const;
     /// The member `key` of this object (an error if this is not an object or lacks the key).
     Field operator[](const char* key) const;
     /// All members of this object, in file order.

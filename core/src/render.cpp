@@ -13,20 +13,21 @@ namespace stochtex {
 
 void render_region(const Texture& texture, const RenderSettings& settings, int x0, int y0, int w, int h, float* rgb)
 {
-    const double step = settings.units_per_pixel;
-    const double footprint = settings.filter ? step : 0.0;
-    const Footprint2D footprint_2d = Footprint2D::square(footprint);
+    const double step_u = settings.units_per_pixel;
+    const double step_v = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : step_u;
+    const double footprint_u = settings.filter ? step_u : 0.0, footprint_v = settings.filter ? step_v : 0.0;
+    const Footprint2D footprint_2d{footprint_u, 0, 0, footprint_v};
     for (int y = 0; y < h; ++y) {
-        const double v = settings.origin_v + (y0 + y + 0.5) * step;
+        const double v = settings.origin_v + (y0 + y + 0.5) * step_v;
         float* row = rgb + std::size_t(y) * w * 3;
         for (int x = 0; x < w; ++x) {
-            const double u = settings.origin_u + (x0 + x + 0.5) * step;
+            const double u = settings.origin_u + (x0 + x + 0.5) * step_u;
             Rgb value;
             if (settings.solid) {
                 SurfacePoint point;
                 point.p = {u, v, settings.z};
-                point.dpdx = {footprint, 0, 0};
-                point.dpdy = {0, footprint, 0};
+                point.dpdx = {footprint_u, 0, 0};
+                point.dpdy = {0, footprint_v, 0};
                 value = texture.eval_solid(point);
             } else {
                 value = texture.eval({u, v}, footprint_2d);
@@ -41,7 +42,8 @@ Image render(const Texture& texture, const RenderSettings& settings, const Progr
     if (settings.width <= 0 || settings.height <= 0)
         throw Error("render: size must be positive, got " + std::to_string(settings.width) + "x" +
                     std::to_string(settings.height));
-    if (!(settings.units_per_pixel > 0)) throw Error("render: units per pixel must be positive");
+    if (!(settings.units_per_pixel > 0) || !(settings.units_per_pixel_v >= 0))
+        throw Error("render: units per pixel must be positive");
     // A whole-image render holds 12 bytes per pixel; beyond 2^28 pixels (3 GiB) use tiles.
     if (double(settings.width) * settings.height > double(1 << 28))
         throw Error("render: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +

@@ -160,7 +160,44 @@ void validate_wavelet(const WaveletParameters& parameters, const std::string& so
     }
 }
 
+/// Also used for the plugin's open-time hints, hence public through validate_image_layout().
+void check_image_layout(const ImageLayout& image, const std::string& source)
+{
+    // 2^20 pixels a side keeps every MIP level's pixel count within 64-bit and OIIO's int
+    // coordinates; tiles must be at least 8 and powers of two (what texture caches expect).
+    constexpr int max_side = 1 << 20;
+    auto check_side = [&](int side, const char* path) {
+        if (side < 1 || side > max_side)
+            json_fields::fail(source, path, "must be in [1, " + std::to_string(max_side) + "], got " + std::to_string(side));
+    };
+    check_side(image.width, "image.width");
+    check_side(image.height, "image.height");
+    auto check_tile = [&](int side, const char* path) {
+        if (side < 8 || side > 4096 || (side & (side - 1)))
+            json_fields::fail(source, path, "must be a power of two in [8, 4096], got " + std::to_string(side));
+    };
+    check_tile(image.tile_width, "image.tile_width");
+    check_tile(image.tile_height, "image.tile_height");
+    check_positive(image.scale, "image.scale", source);
+    if (image.channels != "RGB" && image.channels != "RGBA" && image.channels != "Y")
+        json_fields::fail(source, "image.channels", "expected \"RGB\", \"RGBA\" or \"Y\", got \"" + image.channels + "\"");
+}
+
 // ---- Reading ------------------------------------------------------------------------------------
+
+ImageLayout read_image_layout(const Field& image)
+{
+    image.expect_keys({}, {"width", "height", "tile_width", "tile_height", "scale", "channels"});
+    ImageLayout layout;
+    constexpr std::int64_t int_max = std::numeric_limits<int>::max();
+    if (image.contains("width")) layout.width = int(image["width"].integer(0, int_max));
+    if (image.contains("height")) layout.height = int(image["height"].integer(0, int_max));
+    if (image.contains("tile_width")) layout.tile_width = int(image["tile_width"].integer(0, int_max));
+    if (image.contains("tile_height")) layout.tile_height = int(image["tile_height"].integer(0, int_max));
+    if (image.contains("scale")) layout.scale = image["scale"].number();
+    if (image.contains("channels")) layout.channels = image["channels"].string();
+    return layout;
+}
 
 WaveletParameters read_wavelet(const Field& parameters)
 {
@@ -253,6 +290,17 @@ Json to_json(const TextureDescription& description)
     source["tool"] = provenance.tool;
     source["options"] = Json::object();
     for (const auto& [name, value] : provenance.options) source["options"][name] = value;
+
+    if (description.image) {
+        // Written in full: a file states the layout it was given, whatever the defaults become.
+        Json& image = root["image"];
+        image["width"] = description.image->width;
+        image["height"] = description.image->height;
+        image["tile_width"] = description.image->tile_width;
+        image["tile_height"] = description.image->tile_height;
+        image["scale"] = description.image->scale;
+        image["channels"] = description.image->channels;
+    }
     return root;
 }
 
@@ -290,7 +338,10 @@ void validate(const TextureDescription& description, const std::string& source)
     for (const auto& option : provenance.options)
         if (!option_names.insert(option.first).second)
             json_fields::fail(source, "provenance.options." + option.first, "duplicate option");
+    if (description.image) check_image_layout(*description.image, source);
 }
+
+void validate_image_layout(const ImageLayout& image, const std::string& source) { check_image_layout(image, source); }
 
 TextureDescription parse_stex(const std::string& text, const std::string& source_name)
 {
@@ -305,8 +356,8 @@ TextureDescription parse_stex(const std::string& text, const std::string& source
         root["version"].integer(std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
     check_version(description.version, source_name);
 
-    root.expect_keys(
-        {"format", "version", "model", "seed", "scale", "colour", "histograms", "parameters", "provenance"});
+    root.expect_keys({"format", "version", "model", "seed", "scale", "colour", "histograms", "parameters", "provenance"},
+                     {"image"});
     description.model = root["model"].string();
     check_model(description.model, source_name);
     description.seed = static_cast<std::uint32_t>(root["seed"].integer(0, std::numeric_limits<std::uint32_t>::max()));
@@ -321,6 +372,7 @@ TextureDescription parse_stex(const std::string& text, const std::string& source
     // One branch per known model (check_model has run).
     if (description.model == "wavelet") description.wavelet = read_wavelet(root["parameters"]);
     read_provenance(root["provenance"], description.provenance);
+    if (root.contains("image")) description.image = read_image_layout(root["image"]);
 
     validate(description, source_name);
     return description;

@@ -22,5 +22,7 @@ void write_stex(const std::string& path, const TextureDescription& description);
 /// Semantic checks shared by the reader and by code that builds descriptions (analysis, morph):
 /// sizes, finiteness, orthonormal basis, monotone histograms. Throws Error naming `source_name`.
 void validate(const TextureDescription& description, const std::string& source_name);
+/// The checks of the optional "image" block alone (for layouts overridden at open time).
+void validate_image_layout(const ImageLayout& image, const std::string& source_name);
 
 }  // namespace stochtex

@@ -41,6 +41,20 @@ struct WaveletParameters {
     std::array<std::vector<double>, 3> band_weights;
 };
 
+/// How image consumers (the OIIO plugin) present the texture: a virtual image that is one
+/// period of the periodic texture, MIP-mapped down to 1 × 1. Optional in a .stex file; these
+/// defaults apply when it is absent, and open-time hints override any field.
+struct ImageLayout {
+    int width = 16384;
+    int height = 16384;
+    int tile_width = 64;
+    int tile_height = 64;
+    /// Exemplar pixels per level-0 pixel (1: the photo's own pixel scale; 2: zoomed out ×2).
+    double scale = 1.0;
+    /// "RGB", "RGBA" (alpha 1) or "Y" (Rec.709 luminance).
+    std::string channels = "RGB";
+};
+
 /// Where a description came from: enough to reproduce the analysis.
 struct Provenance {
     std::string source;              ///< file name of the photo (no directories)
@@ -76,6 +90,9 @@ struct TextureDescription {
     std::array<HistogramMap, 3> histograms;
 
     Provenance provenance;
+
+    /// The "image" block; absent: ImageLayout's defaults.
+    std::optional<ImageLayout> image;
 
     // Model parameters: exactly the one named by `model` is set.
     std::optional<WaveletParameters> wavelet;

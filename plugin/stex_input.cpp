@@ -1,0 +1,305 @@
+// stex.imageio.so: an OpenImageIO ImageInput that reads a .stex procedural texture as a tiled,
+// MIP-mapped, float image of any resolution (docs/oiio-plugin.md).
+//
+// All the work is the core's MipImage: this file only maps OIIO's calls onto it. What OIIO
+// requires of it, and why the code looks the way it does:
+// - Tiles are requested concurrently and without a lock (ImageCache/TextureSystem threads): the
+//   tile path reads only state fixed at open() (the MipImage and per-level specs) and never
+//   m_spec, which seek_subimage() changes.
+// - Every problem in open() is an errorfmt() naming the file and the field or hint; open-time
+//   configuration hints ("stex:width" …) override the file's "image" block.
+#include <stochtex/error.h>
+#include <stochtex/mip_image.h>
+#include <stochtex/stex_file.h>
+
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
+
+#include <algorithm>
+#include <charconv>
+#include <limits>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <vector>
+
+OIIO_PLUGIN_NAMESPACE_BEGIN
+
+static_assert(OIIO_PLUGIN_VERSION >= 22, "stex.imageio needs the OIIO 2.x plugin ABI");
+
+namespace {
+
+/// The open-time hints this plugin understands. Any other "stex:" hint is an error (a typo
+/// must not silently give the default).
+constexpr const char* known_hints[] = {"stex:width", "stex:height", "stex:tile_width", "stex:tile_height",
+                                       "stex:scale", "stex:channels", "stex:seed"};
+
+/// The whole of `text` as a number (no leading or trailing characters).
+template <class Number>
+bool parse_exact(const std::string& text, Number& value)
+{
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, value);
+    return error == std::errc() && stop == end && !text.empty();
+}
+
+/// An integer hint: an int attribute, or a string holding exactly an integer.
+bool integer_hint(const ImageSpec& config, const char* name, long long min, long long max, long long& value,
+                  std::string& problem)
+{
+    const ParamValue* p = config.find_attribute(name);
+    if (!p) return true;
+    long long parsed = 0;
+    if (p->type() == TypeInt || p->type() == TypeUInt) {
+        parsed = p->type() == TypeInt ? p->get_int() : (long long)(*(const unsigned int*)p->data());
+    } else if (p->type() == TypeString) {
+        if (!parse_exact(p->get_string(), parsed)) {
+            problem = std::string(name) + ": expected an integer, got \"" + p->get_string() + "\"";
+            return false;
+        }
+    } else {
+        problem = std::string(name) + ": expected an integer, got a value of type " + p->type().c_str();
+        return false;
+    }
+    if (parsed < min || parsed > max) {
+        problem = std::string(name) + ": must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+                  "], got " + std::to_string(parsed);
+        return false;
+    }
+    value = parsed;
+    return true;
+}
+
+}  // namespace
+
+class StexInput final : public ImageInput {
+public:
+    const char* format_name() const override { return "stex"; }
+    bool valid_file(const std::string& filename) const override;
+    bool open(const std::string& name, ImageSpec& newspec) override { return open(name, newspec, ImageSpec()); }
+    bool open(const std::string& name, ImageSpec& newspec, const ImageSpec& config) override;
+    bool close() override;
+    int current_miplevel() const override { return current_level_; }
+    bool seek_subimage(int subimage, int miplevel) override;
+    ImageSpec spec(int subimage, int miplevel) override;
+    ImageSpec spec_dimensions(int subimage, int miplevel) override;
+    bool read_native_scanline(int subimage, int miplevel, int y, int z, void* data) override;
+    bool read_native_tile(int subimage, int miplevel, int x, int y, int z, void* data) override;
+
+private:
+    bool apply_hints(const ImageSpec& config, stochtex::TextureDescription& description,
+                     stochtex::ImageLayout& layout, std::string& problem) const;
+    bool valid_level(int subimage, int miplevel) const
+    {
+        return image_ && subimage == 0 && miplevel >= 0 && miplevel < image_->level_count();
+    }
+
+    std::string filename_;
+    std::unique_ptr<const stochtex::MipImage> image_;
+    std::vector<ImageSpec> level_specs_;  // fixed at open(): read by any thread
+    int current_level_ = 0;
+};
+
+bool StexInput::valid_file(const std::string& filename) const
+{
+    // A .stex file is a JSON object whose first key is "format": "stex" (the canonical writer
+    // puts it first); anything else is left to other readers.
+    std::ifstream in(filename, std::ios::binary);
+    char head[256] = {};
+    in.read(head, sizeof head - 1);
+    const std::string text(head, std::size_t(in.gcount()));
+    const auto brace = text.find_first_not_of(" \t\r\n");
+    return brace != std::string::npos && text[brace] == '{' && text.find("\"stex\"") != std::string::npos;
+}
+
+bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescription& description,
+                            stochtex::ImageLayout& layout, std::string& problem) const
+{
+    for (const ParamValue& p : config.extra_attribs) {
+        const std::string name = p.name().string();
+        if (!Strutil::istarts_with(name, "stex:")) continue;
+        if (std::find(std::begin(known_hints), std::end(known_hints), name) == std::end(known_hints)) {
+            problem = "unknown open hint \"" + name + "\" (known: stex:width, stex:height, stex:tile_width, "
+                      "stex:tile_height, stex:scale, stex:channels, stex:seed)";
+            return false;
+        }
+    }
+    // Range checks beyond int limits are left to validate_image_layout (one set of rules).
+    constexpr long long int_max = std::numeric_limits<int>::max();
+    long long value = 0;
+    struct IntHint { const char* name; int* field; };
+    const IntHint int_hints[] = {{"stex:width", &layout.width}, {"stex:height", &layout.height},
+                                 {"stex:tile_width", &layout.tile_width}, {"stex:tile_height", &layout.tile_height}};
+    for (const IntHint& hint : int_hints) {
+        value = *hint.field;
+        if (!integer_hint(config, hint.name, 0, int_max, value, problem)) return false;
+        *hint.field = int(value);
+    }
+    value = description.seed;
+    if (!integer_hint(config, "stex:seed", 0, 0xffffffffll, value, problem)) return false;
+    description.seed = std::uint32_t(value);
+    if (const ParamValue* p = config.find_attribute("stex:scale")) {
+        if (p->type() == TypeFloat || p->type() == TypeInt) {
+            layout.scale = p->get_float();
+        } else if (p->type() == TypeString) {
+            double scale = 0;
+            if (!parse_exact(p->get_string(), scale)) {
+                problem = "stex:scale: expected a number, got \"" + p->get_string() + "\"";
+                return false;
+            }
+            layout.scale = scale;
+        } else {
+            problem = std::string("stex:scale: expected a number, got a value of type ") + p->type().c_str();
+            return false;
+        }
+    }
+    if (const ParamValue* p = config.find_attribute("stex:channels")) {
+        if (p->type() != TypeString) {
+            problem = "stex:channels: expected a string (RGB, RGBA or Y)";
+            return false;
+        }
+        layout.channels = p->get_string();
+    }
+    return true;
+}
+
+bool StexInput::open(const std::string& name, ImageSpec& newspec, const ImageSpec& config)
+{
+    close();
+    try {
+        stochtex::TextureDescription description = stochtex::read_stex(name);
+        stochtex::ImageLayout layout = description.image.value_or(stochtex::ImageLayout{});
+        std::string problem;
+        if (!apply_hints(config, description, layout, problem)) {
+            errorfmt("{}: {}", name, problem);
+            return false;
+        }
+        image_ = std::make_unique<const stochtex::MipImage>(description, layout, name + " (image layout and open hints)");
+
+        // The spec of every level is built once, here: seek_subimage() only copies one.
+        ImageSpec level0(layout.width, layout.height, image_->channel_count(), TypeDesc::FLOAT);
+        level0.tile_width = layout.tile_width;
+        level0.tile_height = layout.tile_height;
+        level0.tile_depth = 1;
+        if (layout.channels == "Y") {
+            level0.channelnames = {"Y"};
+        } else if (layout.channels == "RGBA") {
+            level0.channelnames = {"R", "G", "B", "A"};
+            level0.alpha_channel = 3;
+        }
+        // What a texture system reads: a plain (2D) texture that wraps periodically, in linear
+        // Rec.709 (the .stex colour space), with its own MIP levels.
+        level0.attribute("textureformat", "Plain Texture");
+        level0.attribute("wrapmodes", "periodic,periodic");
+        // OIIO 2.4 knows linear data as "Linear" (without an OCIO config it does not resolve the
+        // role "scene_linear"); from 2.5 on, colour spaces follow the OCIO/ACES names.
+#if OIIO_VERSION >= OIIO_MAKE_VERSION(2, 5, 0)
+        level0.attribute("oiio:ColorSpace", "lin_rec709");
+#else
+        level0.attribute("oiio:ColorSpace", "Linear");
+#endif
+        level0.attribute("Software", "stochtex " STOCHTEX_VERSION);
+        level0.attribute("ImageDescription",
+                         Strutil::fmt::format("stochtex procedural texture ({} model, seed {}), {} exemplar px per pixel",
+                                              description.model, description.seed, layout.scale));
+        level0.attribute("stex:model", description.model);
+        level0.attribute("stex:seed", int(description.seed));
+        level0.attribute("stex:scale", float(layout.scale));
+        for (int level = 0; level < image_->level_count(); ++level) {
+            ImageSpec spec = level0;
+            spec.width = spec.full_width = image_->level_width(level);
+            spec.height = spec.full_height = image_->level_height(level);
+            level_specs_.push_back(std::move(spec));
+        }
+    } catch (const std::exception& e) {
+        // stochtex errors already name the file ("x.stex: parameters.band_weights[1]: …").
+        errorfmt("{}", e.what());
+        close();
+        return false;
+    }
+    filename_ = name;
+    current_level_ = 0;
+    m_spec = level_specs_[0];
+    newspec = m_spec;
+    return true;
+}
+
+bool StexInput::close()
+{
+    image_.reset();
+    level_specs_.clear();
+    current_level_ = 0;
+    return true;
+}
+
+bool StexInput::seek_subimage(int subimage, int miplevel)
+{
+    if (!valid_level(subimage, miplevel)) return false;
+    current_level_ = miplevel;
+    m_spec = level_specs_[miplevel];
+    return true;
+}
+
+ImageSpec StexInput::spec(int subimage, int miplevel)
+{
+    if (!valid_level(subimage, miplevel)) return ImageSpec(TypeDesc::UNKNOWN);
+    return level_specs_[miplevel];
+}
+
+ImageSpec StexInput::spec_dimensions(int subimage, int miplevel)
+{
+    if (!valid_level(subimage, miplevel)) return ImageSpec(TypeDesc::UNKNOWN);
+    ImageSpec result;
+    result.copy_dimensions(level_specs_[miplevel]);
+    return result;
+}
+
+bool StexInput::read_native_scanline(int subimage, int miplevel, int y, int /*z*/, void* data)
+{
+    if (!valid_level(subimage, miplevel) || y < 0 || y >= image_->level_height(miplevel)) {
+        errorfmt("{}: no scanline {} in subimage {} level {}", filename_, y, subimage, miplevel);
+        return false;
+    }
+    image_->fill(miplevel, 0, y, image_->level_width(miplevel), 1, static_cast<float*>(data));
+    return true;
+}
+
+bool StexInput::read_native_tile(int subimage, int miplevel, int x, int y, int /*z*/, void* data)
+{
+    if (!valid_level(subimage, miplevel)) {
+        errorfmt("{}: no subimage {} level {}", filename_, subimage, miplevel);
+        return false;
+    }
+    const ImageSpec& spec = level_specs_[miplevel];
+    if (x < 0 || y < 0 || x >= spec.width || y >= spec.height || x % spec.tile_width || y % spec.tile_height) {
+        errorfmt("{}: no tile at ({}, {}) in level {}", filename_, x, y, miplevel);
+        return false;
+    }
+    // Tiles on the right and bottom edges hang over the level: OIIO still expects a whole
+    // tile, and ignores the part outside; it is zeroed so no uninitialised memory escapes.
+    const int tile_w = spec.tile_width, tile_h = spec.tile_height, channels = spec.nchannels;
+    const int w = std::min(tile_w, spec.width - x), h = std::min(tile_h, spec.height - y);
+    float* out = static_cast<float*>(data);
+    if (w == tile_w && h == tile_h) {
+        image_->fill(miplevel, x, y, w, h, out);
+        return true;
+    }
+    std::vector<float> region(std::size_t(w) * h * channels);
+    image_->fill(miplevel, x, y, w, h, region.data());
+    std::fill(out, out + std::size_t(tile_w) * tile_h * channels, 0.0f);
+    for (int row = 0; row < h; ++row)
+        std::copy_n(&region[std::size_t(row) * w * channels], std::size_t(w) * channels,
+                    out + std::size_t(row) * tile_w * channels);
+    return true;
+}
+
+OIIO_PLUGIN_EXPORTS_BEGIN
+
+OIIO_EXPORT int stex_imageio_version = OIIO_PLUGIN_VERSION;
+OIIO_EXPORT const char* stex_imageio_library_version() { return "stochtex " STOCHTEX_VERSION; }
+OIIO_EXPORT ImageInput* stex_input_imageio_create() { return new StexInput; }
+OIIO_EXPORT const char* stex_input_extensions[] = {"stex", nullptr};
+
+OIIO_PLUGIN_EXPORTS_END
+
+OIIO_PLUGIN_NAMESPACE_END
