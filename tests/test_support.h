@@ -12,4 +12,13 @@ std::string repo_exemplar(const std::string& name);
 /// A fresh, empty directory for this test's files, private to this process.
 std::string temp_dir(const std::string& test_name);
 
+/// Runs a shell command line; returns its exit status and its stdout and stderr together.
+struct CommandResult {
+    int status = -1;
+    std::string output;
+};
+CommandResult run_command(const std::string& command_line);
+/// The command line quoting of one argument for /bin/sh.
+std::string shell_quote(const std::string& argument);
+
 }  // namespace stochtex::test

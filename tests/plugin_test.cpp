@@ -1,0 +1,479 @@
+// The OIIO plugin (stex.imageio.so) as OIIO's own consumers see it: ImageInput, oiiotool,
+// the Python bindings and the TextureSystem. Each MIP level must be the core's filtered
+// texels, lookups must match the core's direct evaluation, the TextureSystem must pick the
+// level a derivative asks for, the periodic wrap must be seamless, and bad input must fail
+// with a message naming the file.
+#include "test_support.h"
+
+#include "band_filter.h"
+#include "wavelet_noise.h"
+
+#include <stochtex/analysis.h>
+#include <stochtex/image.h>
+#include <stochtex/mip_image.h>
+#include <stochtex/stex_file.h>
+
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+
+namespace fs = std::filesystem;
+using namespace OIIO;
+
+namespace stochtex {
+namespace {
+
+/// Points OIIO at the freshly built plugin before any test opens a file (a cache that failed
+/// to find a reader would otherwise stay failed).
+class PluginEnvironment : public ::testing::Environment {
+public:
+    void SetUp() override { OIIO::attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR); }
+};
+const auto* const environment = ::testing::AddGlobalTestEnvironment(new PluginEnvironment);
+
+/// The committed exemplar analysed once; histogram maps as the analysis chose, or none.
+const TextureDescription& exemplar_texture(bool histogram)
+{
+    static const auto analyse = [](HistogramMode mode) {
+        AnalysisOptions options;
+        options.histogram = mode;
+        return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
+    };
+    static const TextureDescription with = analyse(HistogramMode::automatic), without = analyse(HistogramMode::off);
+    return histogram ? with : without;
+}
+
+std::string write_texture(const std::string& dir, const std::string& name, ImageLayout layout, bool histogram = true,
+                          std::uint32_t seed = 1)
+{
+    TextureDescription d = exemplar_texture(histogram);
+    d.image = layout;
+    d.seed = seed;
+    const std::string path = (fs::path(dir) / name).string();
+    write_stex(path, d);
+    return path;
+}
+
+ImageLayout layout(int width, int height, int tile = 32, std::string channels = "RGB")
+{
+    ImageLayout l;
+    l.width = width, l.height = height, l.tile_width = l.tile_height = tile, l.channels = std::move(channels);
+    return l;
+}
+
+std::vector<float> read_level(const std::string& path, int level, int* width = nullptr, int* height = nullptr)
+{
+    auto input = ImageInput::open(path);
+    EXPECT_TRUE(input) << OIIO::geterror();
+    if (!input) return {};
+    const ImageSpec spec = input->spec(0, level);
+    std::vector<float> pixels(spec.image_pixels() * spec.nchannels);
+    EXPECT_TRUE(input->read_image(0, level, 0, spec.nchannels, TypeFloat, pixels.data())) << input->geterror();
+    if (width) *width = spec.width;
+    if (height) *height = spec.height;
+    return pixels;
+}
+
+std::vector<float> core_level(const TextureDescription& d, const ImageLayout& l, int level)
+{
+    const MipImage image(d, l, "test");
+    std::vector<float> texels(std::size_t(image.level_width(level)) * image.level_height(level) * image.channel_count());
+    image.fill(level, 0, 0, image.level_width(level), image.level_height(level), texels.data());
+    return texels;
+}
+
+/// The error of ImageInput::open with the given hints (empty if it opened).
+std::string open_error(const std::string& path, const ImageSpec& config = ImageSpec())
+{
+    auto input = ImageInput::open(path, &config);
+    return input ? std::string() : OIIO::geterror();
+}
+
+// ---- ImageInput ---------------------------------------------------------------------------------
+
+TEST(PluginImageInput, PresentsTheLayoutAndEveryMipLevelDownToOnePixel)
+{
+    const std::string dir = test::temp_dir("plugin-layout");
+    const std::string path = write_texture(dir, "t.stex", layout(200, 48, 16));
+    auto input = ImageInput::open(path);
+    ASSERT_TRUE(input) << OIIO::geterror();
+    EXPECT_STREQ(input->format_name(), "stex");
+    const ImageSpec& spec = input->spec();
+    EXPECT_EQ(spec.width, 200);
+    EXPECT_EQ(spec.height, 48);
+    EXPECT_EQ(spec.nchannels, 3);
+    EXPECT_EQ(spec.format, TypeFloat);
+    EXPECT_EQ(spec.tile_width, 16);
+    EXPECT_EQ(spec.tile_height, 16);
+    EXPECT_EQ(spec.get_string_attribute("textureformat"), "Plain Texture");
+    EXPECT_EQ(spec.get_string_attribute("wrapmodes"), "periodic,periodic");
+    EXPECT_FALSE(spec.get_string_attribute("oiio:ColorSpace").empty());
+    const std::vector<std::pair<int, int>> expected = {{200, 48}, {100, 24}, {50, 12}, {25, 6},
+                                                       {12, 3},   {6, 1},    {3, 1},   {1, 1}};
+    for (int level = 0; level < int(expected.size()); ++level) {
+        ASSERT_TRUE(input->seek_subimage(0, level)) << level;
+        EXPECT_EQ(input->spec().width, expected[level].first) << level;
+        EXPECT_EQ(input->spec().height, expected[level].second) << level;
+    }
+    EXPECT_FALSE(input->seek_subimage(0, int(expected.size())));
+    EXPECT_FALSE(input->seek_subimage(1, 0));
+}
+
+TEST(PluginImageInput, LevelsAreTheModelsFilteredTexelsAndTheLastIsTheMean)
+{
+    const std::string dir = test::temp_dir("plugin-levels");
+    const ImageLayout l = layout(96, 64, 32);
+    const std::string path = write_texture(dir, "t.stex", l);
+    const TextureDescription d = read_stex(path);
+    const MipImage image(d, l, path);
+    for (int level = 0; level < image.level_count(); ++level) {
+        // Read through OIIO (tiles, edge tiles cut) and straight from the core: bit-identical.
+        EXPECT_EQ(read_level(path, level), core_level(d, l, level)) << "level " << level;
+    }
+    const std::vector<float> last = read_level(path, image.level_count() - 1);
+    const Rgb mean = image.texture().mean();
+    ASSERT_EQ(last.size(), 3u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(last[c], mean[c], 1e-6f) << c;
+}
+
+TEST(PluginImageInput, ChannelSetsYAndRgba)
+{
+    const std::string dir = test::temp_dir("plugin-channels");
+    const std::vector<float> rgb = read_level(write_texture(dir, "rgb.stex", layout(64, 64)), 0);
+    const std::vector<float> y = read_level(write_texture(dir, "y.stex", layout(64, 64, 32, "Y")), 0);
+    const std::vector<float> rgba = read_level(write_texture(dir, "rgba.stex", layout(64, 64, 32, "RGBA")), 0);
+    ASSERT_EQ(y.size() * 3, rgb.size());
+    ASSERT_EQ(rgba.size(), y.size() * 4);
+    for (std::size_t i = 0; i < y.size(); ++i) {
+        EXPECT_NEAR(y[i], 0.2126f * rgb[3 * i] + 0.7152f * rgb[3 * i + 1] + 0.0722f * rgb[3 * i + 2], 1e-6f);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(rgba[4 * i + c], rgb[3 * i + c]);
+        EXPECT_EQ(rgba[4 * i + 3], 1.0f);
+        if (HasFailure()) break;
+    }
+}
+
+TEST(PluginImageInput, OpenHintsOverrideTheFileAndAreChecked)
+{
+    const std::string dir = test::temp_dir("plugin-hints");
+    const std::string path = write_texture(dir, "t.stex", layout(64, 64));
+    ImageSpec config;
+    config.attribute("stex:width", 40);
+    config.attribute("stex:height", "24");  // strings holding numbers are accepted (oiiotool --iconfig)
+    config.attribute("stex:tile_width", 8);
+    config.attribute("stex:scale", 2.0f);
+    config.attribute("stex:seed", 9);
+    auto input = ImageInput::open(path, &config);
+    ASSERT_TRUE(input) << OIIO::geterror();
+    EXPECT_EQ(input->spec().width, 40);
+    EXPECT_EQ(input->spec().height, 24);
+    EXPECT_EQ(input->spec().tile_width, 8);
+    EXPECT_EQ(input->spec().get_int_attribute("stex:seed"), 9);
+    EXPECT_EQ(input->spec().get_float_attribute("stex:scale"), 2.0f);
+
+    auto hint_error = [&](const char* name, auto value) {
+        ImageSpec bad;
+        bad.attribute(name, value);
+        return open_error(path, bad);
+    };
+    EXPECT_NE(hint_error("stex:width", 0).find("image.width: must be in [1, 1048576], got 0"), std::string::npos);
+    EXPECT_NE(hint_error("stex:width", "wide").find("stex:width: expected an integer, got \"wide\""), std::string::npos);
+    EXPECT_NE(hint_error("stex:widht", 64).find("unknown open hint \"stex:widht\""), std::string::npos);
+    EXPECT_NE(hint_error("stex:tile_width", 100).find("image.tile_width: must be a power of two"), std::string::npos);
+    EXPECT_NE(hint_error("stex:channels", "XYZ").find("image.channels"), std::string::npos);
+    EXPECT_NE(hint_error("stex:scale", -1.0f).find("image.scale: must be positive"), std::string::npos);
+    EXPECT_NE(hint_error("stex:seed", -1).find("stex:seed: must be in [0, 4294967295]"), std::string::npos);
+    for (const char* name : {"stex:width", "stex:widht", "stex:scale"})
+        EXPECT_NE(hint_error(name, 0).find(path), std::string::npos) << name << ": the message names the file";
+}
+
+TEST(PluginImageInput, BadFilesFailWithTheFileAndTheProblem)
+{
+    const std::string dir = test::temp_dir("plugin-bad");
+    auto write = [&](const std::string& name, const std::string& text) {
+        const std::string path = (fs::path(dir) / name).string();
+        std::ofstream(path) << text;
+        return path;
+    };
+    const std::string stex = format_stex(exemplar_texture(true));
+    struct Case {
+        std::string path, expected;
+    };
+    const Case cases[] = {
+        {write("empty.stex", ""), "empty.stex"},
+        {write("garbage.stex", "not json at all"), "garbage.stex"},
+        {write("truncated.stex", stex.substr(0, stex.size() / 2)), "truncated.stex"},
+        {write("model.stex", std::string(stex).replace(stex.find("\"wavelet\""), 9, "\"plaid\"")), "unknown model 'plaid'"},
+        {write("image.stex", stex.substr(0, stex.rfind('}')) + ", \"image\": {\"width\": -5}}"), "image.width"},
+    };
+    for (const Case& c : cases) {
+        const std::string message = open_error(c.path);
+        EXPECT_NE(message.find(c.expected), std::string::npos) << c.path << " gave: " << message;
+    }
+    EXPECT_FALSE(open_error(dir + "/missing.stex").empty());
+}
+
+// ---- OIIO's tools -------------------------------------------------------------------------------
+
+std::string with_plugin(const std::string& command) { return "OIIO_LIBRARY_PATH=" STOCHTEX_PLUGIN_DIR " " + command; }
+
+TEST(PluginTools, OiiotoolListsTheMipLevelsAndWritesLevelZero)
+{
+    if (test::run_command("command -v oiiotool").status != 0) GTEST_SKIP() << "oiiotool is not installed";
+    const std::string dir = test::temp_dir("plugin-oiiotool");
+    const std::string path = write_texture(dir, "t.stex", layout(64, 32, 16));
+    const test::CommandResult info = test::run_command(with_plugin("oiiotool --info -v " + test::shell_quote(path)));
+    ASSERT_EQ(info.status, 0) << info.output;
+    EXPECT_NE(info.output.find(":   64 x   32, 3 channel, float stex"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("MIP-map levels: 64x32 32x16 16x8 8x4 4x2 2x1 1x1"), std::string::npos) << info.output;
+
+    const std::string exr = dir + "/out.exr";
+    const test::CommandResult convert =
+        test::run_command(with_plugin("oiiotool " + test::shell_quote(path) + " -o " + test::shell_quote(exr)));
+    ASSERT_EQ(convert.status, 0) << convert.output;
+    int width = 0, height = 0;
+    const std::vector<float> written = read_level(exr, 0, &width, &height);
+    EXPECT_EQ(width, 64);
+    EXPECT_EQ(height, 32);
+    EXPECT_EQ(written, core_level(read_stex(path), layout(64, 32, 16), 0));
+
+    // Open hints from the command line.
+    const test::CommandResult hinted = test::run_command(
+        with_plugin("oiiotool --iconfig stex:width 20 --iconfig stex:height 10 --info " + test::shell_quote(path)));
+    EXPECT_NE(hinted.output.find(":   20 x   10, 3 channel"), std::string::npos) << hinted.output;
+}
+
+TEST(PluginTools, PythonBindingsReadIt)
+{
+    if (test::run_command("/usr/bin/python3 -c 'import OpenImageIO'").status != 0)
+        GTEST_SKIP() << "python3-openimageio is not installed";
+    const std::string dir = test::temp_dir("plugin-python");
+    const std::string path = write_texture(dir, "t.stex", layout(32, 16, 16));
+    const std::string script = "import OpenImageIO as oiio\n"
+                               "i = oiio.ImageInput.open('" + path + "')\n"
+                               "assert i, oiio.geterror()\n"
+                               "s = i.spec()\n"
+                               "p = i.read_image(0, 0, 0, 3, 'float')\n"
+                               "print(s.width, s.height, s.nchannels, '%.6f' % p[0][0][0])\n";
+    std::ofstream(dir + "/read.py") << script;
+    const test::CommandResult result = test::run_command(with_plugin("/usr/bin/python3 " + test::shell_quote(dir + "/read.py")));
+    ASSERT_EQ(result.status, 0) << result.output;
+    const std::vector<float> level = core_level(read_stex(path), layout(32, 16, 16), 0);
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "32 16 3 %.6f", level[0]);
+    EXPECT_NE(result.output.find(expected), std::string::npos) << result.output << " (expected " << expected << ")";
+}
+
+// ---- TextureSystem ------------------------------------------------------------------------------
+
+struct TextureSystemDeleter {
+    void operator()(TextureSystem* ts) const { TextureSystem::destroy(ts); }
+};
+using TextureSystemPtr = std::unique_ptr<TextureSystem, TextureSystemDeleter>;
+
+TextureSystemPtr private_texture_system()
+{
+    TextureSystemPtr ts(TextureSystem::create(false));
+    ts->attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR);
+    return ts;
+}
+
+Rgb lookup(TextureSystem& ts, const std::string& path, TextureOpt& options, float s, float t, float ds, float dt)
+{
+    Rgb result{};
+    EXPECT_TRUE(ts.texture(ustring(path), options, s, t, ds, 0, 0, dt, 3, result.data())) << ts.geterror();
+    return result;
+}
+
+TextureOpt trilinear_options()
+{
+    TextureOpt options;
+    options.mipmode = TextureOpt::MipModeTrilinear;
+    options.interpmode = TextureOpt::InterpBilinear;
+    return options;
+}
+
+TEST(PluginTextureSystem, ChoosesTheMipLevelADerivativeAsksFor)
+{
+    // In the spirit of OIIO's texture-filtersize test: a lookup at a level's texel centre with
+    // that level's texel size as derivative must return exactly that level's texel. A table of
+    // derivative → chosen level (the level whose texel it matches) goes to the test log.
+    const std::string dir = test::temp_dir("plugin-mip-choice");
+    const ImageLayout l = layout(256, 256, 32);
+    const std::string path = write_texture(dir, "t.stex", l);
+    const TextureDescription d = read_stex(path);
+    const MipImage image(d, l, path);
+    std::vector<std::vector<float>> levels;
+    for (int level = 0; level < image.level_count(); ++level) levels.push_back(core_level(d, l, level));
+    auto ts = private_texture_system();
+    TextureOpt options = trilinear_options();
+    std::mt19937 rng(5);
+    for (int level = 0; level < image.level_count(); ++level) {
+        const int size = image.level_width(level);
+        const float texel = 1.0f / size;
+        int matches[16] = {};
+        for (int i = 0; i < 64; ++i) {
+            const int x = int(rng() % size), y = int(rng() % size);
+            const Rgb value = lookup(*ts, path, options, (x + 0.5f) * texel, (y + 0.5f) * texel, texel, texel);
+            // Which level's texel at this point does the value equal? (This level first.)
+            int chosen = -1;
+            for (int k = 0; k < image.level_count() && chosen < 0; ++k) {
+                const int other = k == 0 ? level : k <= level ? k - 1 : k;
+                const int other_size = image.level_width(other);
+                const int ox = int((x + 0.5) * other_size / size), oy = int((y + 0.5) * other_size / size);
+                const float* texel_value = &levels[other][(std::size_t(oy) * other_size + ox) * 3];
+                bool equal = true;
+                for (int c = 0; c < 3; ++c) equal = equal && std::abs(value[c] - texel_value[c]) <= 2e-6f;
+                if (equal) chosen = other;
+            }
+            ++matches[chosen < 0 ? 15 : chosen];
+        }
+        std::printf("derivative 1/%-4d → level %d chosen for %d of 64 lookups\n", size, level, matches[level]);
+        EXPECT_EQ(matches[level], 64) << "level " << level << " (texel 1/" << size << ")";
+    }
+}
+
+/// Per-channel variance of σ_N² Σ_j fade_j² w_j² (eq. 2 with the bands a footprint keeps),
+/// mapped to RGB through the basis: what a Gaussian (histogram-free) texture predicts.
+std::array<double, 3> predicted_rgb_variance(const TextureDescription& d, double footprint_px)
+{
+    std::array<double, 3> channel{};
+    const auto& weights = d.wavelet->band_weights;
+    for (int c = 0; c < 3; ++c)
+        for (std::size_t j = 0; j < weights[c].size(); ++j) {
+            const double fade = band_fade(int(j), footprint_px);
+            channel[c] += WaveletNoise2D::shared().variance() * fade * fade * weights[c][j] * weights[c][j];
+        }
+    std::array<double, 3> rgb{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) rgb[r] += d.basis[r][c] * d.basis[r][c] * channel[c];
+    return rgb;
+}
+
+TEST(PluginTextureSystem, VarianceFallsWithTheFootprintAsTheModelPredicts)
+{
+    // Lookups at the texel centres of the level whose texels are `footprint` exemplar pixels
+    // wide, on a histogram-free texture (so eq. 2 predicts the RGB variance exactly), averaged
+    // over four seeds: each level's grid samples its finest kept band at one phase of the band's
+    // lattice (up to ±20 % of that band's variance), and the seeds average the phases out.
+    const std::string dir = test::temp_dir("plugin-variance");
+    const int size = 2048;
+    const ImageLayout l = layout(size, size, 8);  // small tiles: random lookups stay cheap
+    std::vector<std::string> paths;
+    for (std::uint32_t seed = 1; seed <= 4; ++seed)
+        paths.push_back(write_texture(dir, "t" + std::to_string(seed) + ".stex", l, /*histogram=*/false, seed));
+    const TextureDescription d = read_stex(paths[0]);
+    auto ts = private_texture_system();
+    TextureOpt options = trilinear_options();
+    std::mt19937 rng(8);
+    std::printf("footprint(px)  variance measured/predicted: R G B\n");
+    for (int footprint = 1; footprint <= 64; footprint *= 2) {
+        const int level_size = size / footprint, per_seed = std::min(4096, level_size * level_size);
+        std::array<double, 3> sum{}, sum_sq{};
+        for (const std::string& path : paths)
+            for (int i = 0; i < per_seed; ++i) {
+                const bool whole_level = per_seed == level_size * level_size;
+                const int x = whole_level ? i % level_size : int(rng() % level_size);
+                const int y = whole_level ? i / level_size : int(rng() % level_size);
+                const float texel = 1.0f / level_size;
+                const Rgb v = lookup(*ts, path, options, (x + 0.5f) * texel, (y + 0.5f) * texel, texel, texel);
+                for (int c = 0; c < 3; ++c) sum[c] += v[c], sum_sq[c] += double(v[c]) * v[c];
+            }
+        const auto predicted = predicted_rgb_variance(d, footprint);
+        const double n = 4.0 * per_seed;
+        std::printf("%13d ", footprint);
+        for (int c = 0; c < 3; ++c) {
+            const double mean = sum[c] / n, variance = sum_sq[c] / n - mean * mean;
+            std::printf(" %.3g/%.3g", variance, predicted[c]);
+            // 15 %: the remaining phase and sampling error of a few thousand correlated samples.
+            EXPECT_NEAR(variance, predicted[c], 0.15 * predicted[c]) << "footprint " << footprint << " px, channel " << c;
+        }
+        std::printf("\n");
+    }
+}
+
+TEST(PluginTextureSystem, LookupsMatchTheCoresFilteredEvaluation)
+{
+    // Anywhere (not only at texel centres) and with small and large derivatives, a lookup is
+    // the core's filtered value up to the texture system's bilinear and trilinear
+    // interpolation. Tolerance: RMS difference below 15 % of the standard deviation of the
+    // values at that footprint (interpolating between texels of a band-limited signal).
+    const std::string dir = test::temp_dir("plugin-match");
+    const ImageLayout l = layout(512, 512, 64);
+    const std::string path = write_texture(dir, "t.stex", l);
+    const TextureDescription d = read_stex(path);
+    const MipImage image(d, l, path);
+    auto ts = private_texture_system();
+    TextureOpt options = trilinear_options();
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> uniform(0, 1);
+    for (float derivative_px : {0.5f, 1.0f, 3.0f, 16.0f, 100.0f}) {
+        const float derivative = derivative_px / 512;
+        double error_sq = 0, sum = 0, sum_sq = 0;
+        constexpr int samples = 2000;
+        for (int i = 0; i < samples; ++i) {
+            const float s = uniform(rng), t = uniform(rng);
+            const Rgb looked_up = lookup(*ts, path, options, s, t, derivative, derivative);
+            const Rgb direct = image.texture().eval({s * image.period()[0], t * image.period()[1]},
+                                                    Footprint2D::square(std::max(derivative_px, 1.0f) / d.pixels_per_unit));
+            for (int c = 0; c < 3; ++c) {
+                error_sq += (looked_up[c] - direct[c]) * (looked_up[c] - direct[c]);
+                sum += direct[c], sum_sq += double(direct[c]) * direct[c];
+            }
+        }
+        const double n = 3.0 * samples, sigma = std::sqrt(sum_sq / n - (sum / n) * (sum / n));
+        const double rms = std::sqrt(error_sq / n);
+        std::printf("derivative %6.1f px: RMS(lookup − core) = %.4f, σ = %.4f (%.1f %%)\n", derivative_px, rms, sigma,
+                    100 * rms / sigma);
+        EXPECT_LT(rms, 0.15 * sigma) << "derivative " << derivative_px << " px";
+    }
+}
+
+TEST(PluginTextureSystem, PeriodicWrapHasNoSeam)
+{
+    // Neighbouring lookups across s = 1 (and t = 1) differ no more than neighbours inside.
+    const std::string dir = test::temp_dir("plugin-seam");
+    const int size = 300;  // not a power of two: bands are snapped to fit the period
+    const std::string path = write_texture(dir, "t.stex", layout(size, size, 32));
+    auto ts = private_texture_system();
+    TextureOpt options = trilinear_options();
+    options.swrap = options.twrap = TextureOpt::WrapPeriodic;
+    const float texel = 1.0f / size, tiny = 0.25f * texel;
+    double seam_sum = 0, interior_sum = 0, seam_max = 0, interior_max = 0;
+    int interior_count = 0;
+    for (int row = 0; row < size; ++row) {
+        const float t = (row + 0.5f) * texel;
+        auto step = [&](float s0, float s1, bool across_v) {
+            const Rgb a = across_v ? lookup(*ts, path, options, t, s0, tiny, tiny) : lookup(*ts, path, options, s0, t, tiny, tiny);
+            const Rgb b = across_v ? lookup(*ts, path, options, t, s1, tiny, tiny) : lookup(*ts, path, options, s1, t, tiny, tiny);
+            double difference = 0;
+            for (int c = 0; c < 3; ++c) difference += std::abs(a[c] - b[c]);
+            return difference;
+        };
+        for (bool across_v : {false, true}) {
+            const double seam = step(1 - 0.5f * texel, 1 + 0.5f * texel, across_v);
+            seam_sum += seam, seam_max = std::max(seam_max, seam);
+            for (int x = 0; x + 1 < size; x += 7) {
+                const double inside = step((x + 0.5f) * texel, (x + 1.5f) * texel, across_v);
+                interior_sum += inside, interior_max = std::max(interior_max, inside), ++interior_count;
+            }
+        }
+    }
+    const double seam_mean = seam_sum / (2 * size), interior_mean = interior_sum / interior_count;
+    std::printf("mean |Δ| across the wrap %.5f, inside %.5f; max %.5f vs %.5f\n", seam_mean, interior_mean, seam_max,
+                interior_max);
+    // 600 seam pairs against ~25 000 interior pairs: the seam mean is within sampling error
+    // (~5 %) of the interior mean when there is no seam; a seam would double it.
+    EXPECT_LT(seam_mean, 1.2 * interior_mean);
+    EXPECT_LE(seam_max, interior_max);
+}
+
+}  // namespace
+}  // namespace stochtex
