@@ -16,22 +16,24 @@ void render_region(const Texture& texture, const RenderSettings& settings, int x
     const double step_u = settings.units_per_pixel;
     const double step_v = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : step_u;
     const double footprint_u = settings.filter ? step_u : 0.0, footprint_v = settings.filter ? step_v : 0.0;
-    const Footprint2D footprint_2d{footprint_u, 0, 0, footprint_v};
+    if (!settings.solid) {
+        RasterRegion region;
+        region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
+        region.du = step_u, region.dv = step_v;
+        region.x0 = x0, region.y0 = y0, region.width = w, region.height = h;
+        region.footprint = {footprint_u, 0, 0, footprint_v};
+        texture.eval_region(region, rgb);
+        return;
+    }
     for (int y = 0; y < h; ++y) {
         const double v = settings.origin_v + (y0 + y + 0.5) * step_v;
         float* row = rgb + std::size_t(y) * w * 3;
         for (int x = 0; x < w; ++x) {
-            const double u = settings.origin_u + (x0 + x + 0.5) * step_u;
-            Rgb value;
-            if (settings.solid) {
-                SurfacePoint point;
-                point.p = {u, v, settings.z};
-                point.dpdx = {footprint_u, 0, 0};
-                point.dpdy = {0, footprint_v, 0};
-                value = texture.eval_solid(point);
-            } else {
-                value = texture.eval({u, v}, footprint_2d);
-            }
+            SurfacePoint point;
+            point.p = {settings.origin_u + (x0 + x + 0.5) * step_u, v, settings.z};
+            point.dpdx = {footprint_u, 0, 0};
+            point.dpdy = {0, footprint_v, 0};
+            const Rgb value = texture.eval_solid(point);
             std::copy(value.begin(), value.end(), row + 3 * x);
         }
     }

@@ -2,11 +2,21 @@
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "wavelet_texture.h"
 
 namespace stochtex {
+
+void Texture::eval_region(const RasterRegion& region, float* rgb) const
+{
+    for (int j = 0; j < region.height; ++j)
+        for (int i = 0; i < region.width; ++i) {
+            const Rgb value = eval({region.u(i), region.v(j)}, region.footprint);
+            std::copy(value.begin(), value.end(), rgb + (std::size_t(j) * region.width + i) * 3);
+        }
+}
 
 std::unique_ptr<Texture> make_texture(const TextureDescription& description)
 {

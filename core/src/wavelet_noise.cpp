@@ -166,47 +166,6 @@ double WaveletNoise2D::grid_variance(int j, double phase) const
     return sum / (double(cells) * per_cell * cells * per_cell);
 }
 
-namespace {
-
-/// floor() as an integer without a libm call (x86-64's baseline has no rounding instruction).
-inline std::int64_t floor_to_int(double x)
-{
-    const auto i = std::int64_t(x);
-    return i - (double(i) > x);
-}
-
-/// The quadratic B-spline weights at x and the index of the first of its three coefficients,
-/// wrapped into [0, n] (n only by rounding at exact multiples of the period; the padded tile
-/// holds columns up to n + 2).
-struct WrappedSpline {
-    std::int64_t first;
-    float w[3];
-    /// mask = n − 1 when n is a power of two (the common case: one AND instead of a division).
-    WrappedSpline(double x, int n, double inverse_n, int mask)
-    {
-        const double shifted = x - 0.5;
-        const std::int64_t base = floor_to_int(shifted);
-        const float t = float(shifted - double(base));
-        first = mask >= 0 ? (base & mask) : base - n * floor_to_int(double(base) * inverse_n);
-        w[0] = 0.5f * (1 - t) * (1 - t);
-        w[2] = 0.5f * t * t;
-        w[1] = 1 - w[0] - w[2];
-    }
-};
-
-}  // namespace
-
-float WaveletNoise2D::eval(double x, double y) const
-{
-    const WrappedSpline wx(x, nx_, inverse_nx_, mask_x_), wy(y, ny_, inverse_ny_, mask_y_);
-    const std::size_t width = std::size_t(nx_) + 3;
-    const float* row = &padded_[std::size_t(wy.first) * width + std::size_t(wx.first)];
-    float result = 0;
-    for (int j = 0; j < 3; ++j, row += width)
-        result += wy.w[j] * (wx.w[0] * row[0] + wx.w[1] * row[1] + wx.w[2] * row[2]);
-    return result;
-}
-
 const WaveletNoise2D& WaveletNoise2D::shared()
 {
     static const WaveletNoise2D tile(shared_tile_2d, shared_tile_2d, shared_tile_seed);

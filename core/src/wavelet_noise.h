@@ -17,6 +17,13 @@
 
 namespace stochtex {
 
+/// The quadratic B-spline weights at a lattice coordinate and the index of the first of its
+/// three coefficients, wrapped into one period (see WaveletNoise2D::spline_x / spline_y).
+struct LatticeSpline {
+    std::int64_t first;
+    float w[3];
+};
+
 class WaveletNoise2D {
 public:
     /// The shared process-wide 256² tile (built once, thread-safe).
@@ -28,7 +35,20 @@ public:
     WaveletNoise2D(int period_x, int period_y, std::uint64_t tile_seed);
 
     /// N(x, y), x and y in lattice units. Periodic with period (period_x(), period_y()).
-    float eval(double x, double y) const;
+    float eval(double x, double y) const { return eval(spline_x(x), spline_y(y)); }
+
+    // The separable parts of eval(), for rasters: a row shares spline_y, a column spline_x.
+    LatticeSpline spline_x(double x) const { return wrapped_spline(x, nx_, inverse_nx_, mask_x_); }
+    LatticeSpline spline_y(double y) const { return wrapped_spline(y, ny_, inverse_ny_, mask_y_); }
+    float eval(const LatticeSpline& sx, const LatticeSpline& sy) const
+    {
+        const std::size_t width = std::size_t(nx_) + 3;
+        const float* row = &padded_[std::size_t(sy.first) * width + std::size_t(sx.first)];
+        float result = 0;
+        for (int j = 0; j < 3; ++j, row += width)
+            result += sy.w[j] * (sx.w[0] * row[0] + sx.w[1] * row[1] + sx.w[2] * row[2]);
+        return result;
+    }
     int period_x() const { return nx_; }
     int period_y() const { return ny_; }
     /// The B-spline coefficients, period_x · period_y floats, rows contiguous (for spectral analysis).
@@ -46,6 +66,28 @@ public:
 
 private:
     double grid_variance(int j, double phase) const;
+
+    /// floor() as an integer without a libm call (x86-64's baseline has no rounding instruction).
+    static std::int64_t floor_to_int(double x)
+    {
+        const auto i = std::int64_t(x);
+        return i - (double(i) > x);
+    }
+    /// The first index is wrapped into [0, n] (n only by rounding at exact multiples of the
+    /// period; the padded tile holds columns up to n + 2). mask = n − 1 when n is a power of
+    /// two (the common case: one AND instead of a multiplication and a floor).
+    static LatticeSpline wrapped_spline(double x, int n, double inverse_n, int mask)
+    {
+        const double shifted = x - 0.5;
+        const std::int64_t base = floor_to_int(shifted);
+        const float t = float(shifted - double(base));
+        LatticeSpline s;
+        s.first = mask >= 0 ? (base & mask) : base - n * floor_to_int(double(base) * inverse_n);
+        s.w[0] = 0.5f * (1 - t) * (1 - t);
+        s.w[2] = 0.5f * t * t;
+        s.w[1] = 1 - s.w[0] - s.w[2];
+        return s;
+    }
 
     int nx_, ny_;
     double inverse_nx_, inverse_ny_;
@@ -66,6 +108,8 @@ public:
     float eval(double x, double y, double z) const;
     int tile_size() const { return size_; }
     double variance() const { return variance_; }
+    /// The B-spline coefficients, tile_size³ floats, index (z · size + y) · size + x (exporters).
+    const std::vector<float>& coefficients() const { return coefficients_; }
 
 private:
     int size_;

@@ -4,6 +4,7 @@
 #include "random.h"
 #include "wavelet_noise.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stochtex {
@@ -103,31 +104,47 @@ WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2
     }
 }
 
+WaveletTexture::Fades WaveletTexture::fades(double footprint_px) const
+{
+    // The fade depends on the band only, not on the channel.
+    Fades result;
+    const std::size_t band_count = bands_[0].size();
+    for (std::size_t j = 0; j < band_count; ++j)
+        result.band[j] = j < present_bands_ ? band_fade(int(j), footprint_px) : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        double dropped_variance = 0;
+        for (std::size_t j = 0; j < band_count; ++j) {
+            const double weight = bands_[c][j].weight;
+            const float fade = result.band[j];
+            if (fade < 1) dropped_variance += (1 - double(fade) * fade) * weight * weight;
+        }
+        const double sigma = sigma_m_[c];
+        result.dropped_sigma[c] = sigma > 0 ? std::sqrt(dropped_variance * WaveletNoise2D::shared().variance()) / sigma : 0;
+    }
+    return result;
+}
+
+Rgb WaveletTexture::finish(const std::array<double, 3>& kept, double gain, const Fades& fades) const
+{
+    std::array<double, 3> z{};
+    for (int c = 0; c < 3; ++c)
+        if (sigma_m_[c] > 0) z[c] = gain * kept[c] / sigma_m_[c];
+    return colour_.to_rgb(z, fades.dropped_sigma);
+}
+
 template <class BandNoise>
 Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
 {
-    // The fade depends on the band only, not the channel: compute it once per evaluation.
-    constexpr std::size_t max_bands = 24;  // validate() bounds the band count
-    float fades[max_bands];
-    const std::size_t band_count = bands_[0].size();
-    for (std::size_t j = 0; j < band_count; ++j) fades[j] = j < present_bands_ ? band_fade(int(j), footprint_px) : 0.0f;
-    std::array<double, 3> z{}, dropped{};
+    const Fades f = fades(footprint_px);
+    std::array<double, 3> kept{};
     for (int c = 0; c < 3; ++c) {
-        double kept = 0, dropped_variance = 0;
         const auto& bands = bands_[c];
         for (std::size_t j = 0; j < bands.size(); ++j) {
-            const double weight = bands[j].weight;
-            const float fade = fades[j];
-            if (fade < 1) dropped_variance += (1 - double(fade) * fade) * weight * weight;
-            if (fade > 0 && weight != 0) kept += fade * weight * band_noise(bands[j]);
-        }
-        const double sigma = sigma_m_[c];
-        if (sigma > 0) {
-            z[c] = gain * kept / sigma;
-            dropped[c] = std::sqrt(dropped_variance * WaveletNoise2D::shared().variance()) / sigma;
+            const float fade = f.band[j];
+            if (fade > 0 && bands[j].weight != 0) kept[c] += fade * bands[j].weight * band_noise(bands[j]);
         }
     }
-    return colour_.to_rgb(z, dropped);
+    return finish(kept, gain, f);
 }
 
 Rgb WaveletTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
@@ -147,6 +164,42 @@ Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
         const double s = band.solid_scale;
         return noise.eval(p[0] * s + band.offset[0], p[1] * s + band.offset[1], p[2] * s + band.offset[2]);
     });
+}
+
+}  // namespace stochtex
+
+namespace stochtex {
+
+void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
+{
+    // eval() at every pixel, with the work that depends on one coordinate only done once: the
+    // fades for the whole region, a band's x-spline once per column and its y-spline once per
+    // row. The arithmetic per pixel is eval()'s, in the same order: bit-identical values.
+    const Fades f = fades(region.footprint.major_axis() * description().pixels_per_unit);
+    const std::size_t pixels = std::size_t(region.width) * region.height;
+    std::vector<std::array<double, 3>> kept(pixels, std::array<double, 3>{});
+    std::vector<LatticeSpline> columns(region.width);
+    for (int c = 0; c < 3; ++c) {
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const Band& band = bands[j];
+            const float fade = f.band[j];
+            if (!(fade > 0 && band.weight != 0)) continue;
+            const double fade_weight = fade * band.weight;
+            const WaveletNoise2D& tile = *band.tile;
+            for (int i = 0; i < region.width; ++i) columns[i] = tile.spline_x(region.u(i) * band.scale[0] + band.offset[0]);
+            for (int y = 0; y < region.height; ++y) {
+                const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
+                std::array<double, 3>* out = &kept[std::size_t(y) * region.width];
+                for (int i = 0; i < region.width; ++i)
+                    out[i][c] += fade_weight * (band.gain * double(tile.eval(columns[i], row)));
+            }
+        }
+    }
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const Rgb value = finish(kept[p], 1.0, f);
+        std::copy(value.begin(), value.end(), rgb + 3 * p);
+    }
 }
 
 }  // namespace stochtex

@@ -30,11 +30,16 @@ public:
     WaveletTexture(const TextureDescription& description, const Vec2& period);
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
+    void eval_region(const RasterRegion& region, float* rgb) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
     Rgb mean() const override { return colour_.mean(); }
 
     /// σ_M of each channel (eq. 2) with this build's measured σ_N².
     const std::array<double, 3>& sigma_m() const { return sigma_m_; }
+    /// Band j of channel c as synthesised (weight, tile, lattice scales and offsets) and the
+    /// solid gain: for exporters that re-implement synthesis elsewhere (wavelet_shader_data.h).
+    const auto& band(int c, std::size_t j) const { return bands_[c][j]; }
+    double solid_gain() const { return solid_gain_; }
 
 private:
     struct Band {
@@ -46,6 +51,16 @@ private:
         double offset[3];            // lattice units
     };
     WaveletTexture(const TextureDescription& description, const Vec2* period);
+    static constexpr std::size_t max_bands = 24;  // validate() bounds the band count
+    /// What a footprint keeps of each band (the same for every channel), and the standard
+    /// deviation it removes from each channel in units of σ_M (for the histogram filter).
+    struct Fades {
+        float band[max_bands];
+        std::array<double, 3> dropped_sigma;
+    };
+    Fades fades(double footprint_px) const;
+    /// kept[c] = Σ_j fade_j w_cj N_j: to RGB through the colour mapping.
+    Rgb finish(const std::array<double, 3>& kept, double gain, const Fades& fades) const;
     template <class BandNoise>
     Rgb synthesize(double footprint_px, double gain, const BandNoise& band_noise) const;
 
