@@ -42,13 +42,21 @@ public:
     LatticeSpline spline_y(double y) const { return wrapped_spline(y, ny_, inverse_ny_, mask_y_); }
     float eval(const LatticeSpline& sx, const LatticeSpline& sy) const
     {
-        const std::size_t width = std::size_t(nx_) + 3;
-        const float* row = &padded_[std::size_t(sy.first) * width + std::size_t(sx.first)];
-        float result = 0;
-        for (int j = 0; j < 3; ++j, row += width)
-            result += sy.w[j] * (sx.w[0] * row[0] + sx.w[1] * row[1] + sx.w[2] * row[2]);
-        return result;
+        const float* row = padded_row(sy.first) + sx.first;
+        const std::size_t width = padded_width();
+        float column[3];
+        for (int k = 0; k < 3; ++k) column[k] = combine_rows(sy, row + k, width);
+        return sx.w[0] * column[0] + sx.w[1] * column[1] + sx.w[2] * column[2];
     }
+    /// Rasters combine a row's three coefficient rows once for all its pixels; these are the
+    /// two halves of eval(x, y), with eval()'s arithmetic in eval()'s order (bit-identical).
+    const float* padded_row(std::int64_t first) const { return &padded_[std::size_t(first) * padded_width()]; }
+    std::size_t padded_width() const { return std::size_t(nx_) + 3; }
+    static float combine_rows(const LatticeSpline& sy, const float* at, std::size_t width)
+    {
+        return sy.w[0] * at[0] + sy.w[1] * at[width] + sy.w[2] * at[2 * width];
+    }
+
     int period_x() const { return nx_; }
     int period_y() const { return ny_; }
     /// The B-spline coefficients, period_x · period_y floats, rows contiguous (for spectral analysis).

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace stochtex {
 
@@ -173,12 +174,14 @@ namespace stochtex {
 void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
 {
     // eval() at every pixel, with the work that depends on one coordinate only done once: the
-    // fades for the whole region, a band's x-spline once per column and its y-spline once per
-    // row. The arithmetic per pixel is eval()'s, in the same order: bit-identical values.
+    // fades for the whole region, a band's x-spline once per column, and per row its y-spline
+    // and the three coefficient rows combined once (then 3 products per pixel instead of 12).
+    // The arithmetic is eval()'s, in the same order: bit-identical values.
     const Fades f = fades(region.footprint.major_axis() * description().pixels_per_unit);
     const std::size_t pixels = std::size_t(region.width) * region.height;
     std::vector<std::array<double, 3>> kept(pixels, std::array<double, 3>{});
     std::vector<LatticeSpline> columns(region.width);
+    std::vector<float> combined;
     for (int c = 0; c < 3; ++c) {
         const auto& bands = bands_[c];
         for (std::size_t j = 0; j < bands.size(); ++j) {
@@ -187,12 +190,25 @@ void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
             if (!(fade > 0 && band.weight != 0)) continue;
             const double fade_weight = fade * band.weight;
             const WaveletNoise2D& tile = *band.tile;
-            for (int i = 0; i < region.width; ++i) columns[i] = tile.spline_x(region.u(i) * band.scale[0] + band.offset[0]);
+            std::int64_t lo = INT64_MAX, hi = INT64_MIN;  // the padded columns this band reads
+            for (int i = 0; i < region.width; ++i) {
+                columns[i] = tile.spline_x(region.u(i) * band.scale[0] + band.offset[0]);
+                lo = std::min(lo, columns[i].first), hi = std::max(hi, columns[i].first + 2);
+            }
+            combined.resize(std::size_t(hi - lo + 1));
+            const std::size_t width = tile.padded_width();
             for (int y = 0; y < region.height; ++y) {
                 const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
+                const float* coefficients = tile.padded_row(row.first);
+                for (std::int64_t k = lo; k <= hi; ++k)
+                    combined[std::size_t(k - lo)] = WaveletNoise2D::combine_rows(row, coefficients + k, width);
                 std::array<double, 3>* out = &kept[std::size_t(y) * region.width];
-                for (int i = 0; i < region.width; ++i)
-                    out[i][c] += fade_weight * (band.gain * double(tile.eval(columns[i], row)));
+                for (int i = 0; i < region.width; ++i) {
+                    const LatticeSpline& sx = columns[i];
+                    const float* at = &combined[std::size_t(sx.first - lo)];
+                    const float value = sx.w[0] * at[0] + sx.w[1] * at[1] + sx.w[2] * at[2];
+                    out[i][c] += fade_weight * (band.gain * double(value));
+                }
             }
         }
     }
