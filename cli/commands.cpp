@@ -7,6 +7,7 @@
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
 #include <stochtex/morph.h>
+#include <stochtex/pov/pov_include.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 namespace stex_cli {
 
@@ -172,6 +174,37 @@ int MorphCommand::run() const
     const TextureDescription result = stochtex::morph(read_stex(a), read_stex(b), t);
     write_stex(output, result);
     std::printf("wrote %s (t = %g between %s and %s)\n", output.c_str(), t, a.c_str(), b.c_str());
+    return 0;
+}
+
+int PovCommand::run() const
+{
+    const auto start = std::chrono::steady_clock::now();
+    pov::PovIncludeOptions options;
+    options.name = name.empty() ? pov::pov_name_from_path(output) : name;
+    pov::validate_pov_name(options.name);  // before any work: a typo costs nothing
+    const TextureDescription description = read_stex(texture);
+    options.mode = !mode.empty()                                     ? pov::pov_mode_from_string(mode)
+                   : pov::has_procedural_form(description.model) ? pov::PovMode::procedural
+                                                                     : pov::PovMode::baked;
+    const std::filesystem::path include_path(output);
+    // The baked image sits beside the include, which refers to it by file name only.
+    const std::filesystem::path image_path = std::filesystem::path(include_path).replace_extension(".exr");
+    if (options.mode == pov::PovMode::baked && image_path == include_path)
+        throw Error(output + ": the include would overwrite its own baked image; name it .inc");
+    options.image_file_name = image_path.filename().string();
+    options.bake_size = bake_size;
+    options.source_name = std::filesystem::path(texture).filename().string();
+    const pov::PovInclude include = pov::make_pov_include(description, options);
+    if (!include.baked_image.empty()) write_image(image_path.string(), include.baked_image);
+    {
+        std::ofstream out(include_path, std::ios::binary);
+        out << include.text;
+        if (!out) throw Error(output + ": cannot write the POV-Ray include");
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("wrote %s (%s mode, texture %s, %zu bytes) in %.2f s\n%s\n", output.c_str(), pov::to_string(options.mode),
+                options.name.c_str(), include.text.size(), seconds, include.summary.c_str());
     return 0;
 }
 

@@ -55,4 +55,11 @@ struct MorphCommand {
 /// Parses "WxH" (e.g. "1024x512"); throws Error naming the option.
 std::pair<int, int> parse_size(const std::string& text, const char* option);
 
+struct PovCommand {
+    std::string texture, output, name;  // name empty: from the output file's name
+    std::string mode;                   // empty: procedural where the model has that form, else baked
+    int bake_size = 0;                  // baked: pixels per side; 0: one texture unit at the photo's scale
+    int run() const;
+};
+
 }  // namespace stex_cli

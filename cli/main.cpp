@@ -73,13 +73,24 @@ int main(int argc, char** argv)
     m->add_option("--t", morph.t, "Interpolation parameter in [0, 1]")->check(CLI::Range(0.0, 1.0))->capture_default_str();
     m->add_option("-o,--output", morph.output, "Output .stex file")->required();
 
+    PovCommand pov;
+    auto* p = app.add_subcommand("pov", "Write a POV-Ray 3.7 include: the texture as SDL (procedural) or a baked tileable EXR");
+    p->add_option("texture", pov.texture, ".stex file")->required();
+    p->add_option("-o,--output", pov.output, "Output include (.inc); baked mode also writes the image beside it (.exr)")->required();
+    p->add_option("--name", pov.name, "Identifier prefix in the include (default: from the output file name)");
+    p->add_option("--mode", pov.mode, "procedural (POV-Ray evaluates it: solid, unlimited) or baked (an image map; any model); "
+                                      "default: procedural where the model allows it")
+        ->check(CLI::IsMember({"procedural", "baked"}));
+    p->add_option("--bake-size", pov.bake_size, "Baked mode: texels per side, 16 to 8192 (0: one texture unit at the photo's pixel scale, at most 2048)")
+        ->check(CLI::Range(0, 8192))->capture_default_str();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
     if (app.get_subcommands().empty()) {
-        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph); see stex --help\n");
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, pov); see stex --help\n");
         return 1;
     }
     try {
@@ -88,6 +99,7 @@ int main(int argc, char** argv)
         if (*i) return info.run();
         if (*c) return compare.run();
         if (*m) return morph.run();
+        if (*p) return pov.run();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "stex: error: %s\n", e.what());
         return 1;

@@ -20,6 +20,25 @@ name="$(basename "${photo%.*}")"
 "$stex" render "$out/$name.stex" -o "$out/$name-core-wide.png" --size 1024x512 --scale 4
 "$stex" render "$out/$name.stex" -o "$out/$name-core-solid.png" --solid --z 0.25
 "$stex" compare "$photo" "$out/$name.stex" -o "$out/$name-compare.png"
+# POV-Ray (docs/pov.md): the texture as a procedural include and as a baked one, each on the
+# measurement plane (one texture unit, 512², linear EXR and sRGB PNG), then both in the showcase.
+pov_render() {  # scene output.png|.exr include-dir [extra povray arguments...]
+  local scene="$1" image="$2" dir="$3"; shift 3
+  povray -D "+L$dir" "+I$root/scenes/pov/$scene" "+O$image" "$@" >"${image%.*}.log" 2>&1 ||
+    { cat "${image%.*}.log" >&2; exit 1; }
+}
+for mode in procedural baked; do
+  mkdir -p "$out/pov-$mode"
+  "$stex" pov "$out/$name.stex" -o "$out/pov-$mode/plane_texture.inc" --name Plane_Texture --mode "$mode"
+  for format in exr png; do
+    flag=$([ "$format" = exr ] && echo +FE || echo +FN)
+    pov_render test_plane.pov "$out/$name-pov-$mode.$format" "$out/pov-$mode" -A "$flag" +W512 +H512 \
+      Declare=Extent_U=1 Declare=Depth=0.25
+  done
+done
+"$stex" pov "$out/$name.stex" -o "$out/showcase_procedural.inc" --name Showcase_Procedural
+"$stex" pov "$out/$name.stex" -o "$out/showcase_baked.inc" --name Showcase_Baked --mode baked --bake-size 2048
+pov_render showcase.pov "$out/$name-pov-showcase.png" "$out" +W800 +H450 +A0.1 +AM2 +R2
 echo
 echo "Demo images in $out:"
 echo "  $name.stex             the procedural texture ($(stat -c %s "$out/$name.stex") bytes)"
@@ -27,4 +46,8 @@ echo "  $name-core.exr/.png    core render at the photo's pixel scale (EXR scene
 echo "  $name-core-wide.png    1024x512, zoomed out 4x (band-clamped anti-aliasing)"
 echo "  $name-core-solid.png   a slice of the solid (3D) texture"
 echo "  $name-compare.png      photo | synthesis, radial PSDs and histograms"
-echo "(The OIIO plugin and POV-Ray routes arrive with issues 3 and 4.)"
+echo "  $name-pov-procedural.exr/.png  POV-Ray, procedural include (solid, POV-Ray's own noise), same plane"
+echo "  $name-pov-baked.exr/.png       POV-Ray, baked include (a tileable EXR image map)"
+echo "  $name-pov-showcase.png         POV-Ray showcase: procedural cube, columns, sphere; baked floor"
+echo "  pov-procedural/, pov-baked/, showcase_*.inc   the generated includes (and baked EXRs)"
+echo "(The OIIO plugin route arrives with issue 3.)"
