@@ -9,7 +9,7 @@ photo="${1:-$root/data/exemplars/concrete_512.png}"
 out="${2:-$root/out/demo}"
 bash "$root/scripts/install-deps.sh"
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$root/build" -j"$(nproc)" --target stex >/dev/null
+cmake --build "$root/build" -j"$(nproc)" --target stex stex_imageio >/dev/null
 stex="$root/build/cli/stex"
 mkdir -p "$out"
 name="$(basename "${photo%.*}")"
@@ -20,6 +20,13 @@ name="$(basename "${photo%.*}")"
 "$stex" render "$out/$name.stex" -o "$out/$name-core-wide.png" --size 1024x512 --scale 4
 "$stex" render "$out/$name.stex" -o "$out/$name-core-solid.png" --solid --z 0.25
 "$stex" compare "$photo" "$out/$name.stex" -o "$out/$name-compare.png"
+# The OIIO plugin (docs/oiio-plugin.md): OIIO's own oiiotool reads the .stex as a MIP-mapped
+# image; write its level 0 at 1024² and its level 3 (128², each texel filtered by the model).
+export OIIO_LIBRARY_PATH="$root/build/plugins"
+oiiotool --iconfig stex:width 1024 --iconfig stex:height 1024 "$out/$name.stex" -o "$out/$name-oiio.exr"
+oiiotool "$out/$name-oiio.exr" --colorconvert linear sRGB -o "$out/$name-oiio.png"
+oiiotool --iconfig stex:width 1024 --iconfig stex:height 1024 "$out/$name.stex" --selectmip 3 \
+  --colorconvert linear sRGB -o "$out/$name-oiio-mip3.png"
 # POV-Ray (docs/pov.md): the texture as a procedural include and as a baked one, each on the
 # measurement plane (one texture unit, 512², linear EXR and sRGB PNG), then both in the showcase.
 pov_render() {  # scene output.png|.exr include-dir [extra povray arguments...]
@@ -46,8 +53,9 @@ echo "  $name-core.exr/.png    core render at the photo's pixel scale (EXR scene
 echo "  $name-core-wide.png    1024x512, zoomed out 4x (band-clamped anti-aliasing)"
 echo "  $name-core-solid.png   a slice of the solid (3D) texture"
 echo "  $name-compare.png      photo | synthesis, radial PSDs and histograms"
+echo "  $name-oiio.exr/.png     through the OIIO plugin (oiiotool): level 0 of a 1024² virtual image, tileable"
+echo "  $name-oiio-mip3.png    its MIP level 3 (128²), computed by the model with that level's footprint"
 echo "  $name-pov-procedural.exr/.png  POV-Ray, procedural include (solid, POV-Ray's own noise), same plane"
 echo "  $name-pov-baked.exr/.png       POV-Ray, baked include (a tileable EXR image map)"
 echo "  $name-pov-showcase.png         POV-Ray showcase: procedural cube, columns, sphere; baked floor"
 echo "  pov-procedural/, pov-baked/, showcase_*.inc   the generated includes (and baked EXRs)"
-echo "(The OIIO plugin route arrives with issue 3.)"
