@@ -6,9 +6,6 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <cerrno>
 #include <cmath>
@@ -21,29 +18,14 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
-
 namespace fs = std::filesystem;
 
 namespace {
 
 // ---- Running the tool ---------------------------------------------------------------------------
 
-struct RunResult {
-    bool exited = false;  ///< false: killed by a signal (a crash)
-    int code = -1;        ///< exit code when `exited`
-    int signal = 0;       ///< the signal otherwise
-    std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& os, const RunResult& r)
-{
-    if (r.exited)
-        os << "exit code " << r.code;
-    else
-        os << "killed by signal " << r.signal;
-    return os << "\n--- stdout ---\n" << r.out << "--- stderr ---\n" << r.err;
-}
+using RunResult = stochtex::test::ProgramResult;
+using stochtex::test::contains;
 
 std::string read_file(const fs::path& path)
 {
@@ -60,38 +42,11 @@ void write_file(const fs::path& path, const std::string& bytes)
 /// `dir`.
 RunResult run_stex(const std::vector<std::string>& args, const fs::path& dir)
 {
-    const fs::path out_path = dir / "stdout.txt", err_path = dir / "stderr.txt";
-    std::vector<std::string> argv_strings{STOCHTEX_CLI};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& arg : argv_strings) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int spawn_error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-
-    RunResult result;
-    if (spawn_error != 0) {
-        ADD_FAILURE() << "cannot run " << argv[0] << ": " << std::strerror(spawn_error);
-        return result;
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    result.exited = WIFEXITED(status);
-    result.code = result.exited ? WEXITSTATUS(status) : -1;
-    result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-    result.out = read_file(out_path);
-    result.err = read_file(err_path);
-    return result;
+    std::vector<std::string> argv{STOCHTEX_CLI};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return stochtex::test::run_program(argv, dir.string());
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 /// A stochtex::Error (bad file, bad value): exit code exactly 1, "stex: error:" and `name` on stderr.
 void expect_error_naming(const RunResult& r, const std::string& name)

@@ -35,7 +35,11 @@ namespace {
 /// to find a reader would otherwise stay failed).
 class PluginEnvironment : public ::testing::Environment {
 public:
-    void SetUp() override { OIIO::attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR); }
+    void SetUp() override
+    {
+        OIIO::attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR);
+        setenv("OIIO_LIBRARY_PATH", STOCHTEX_PLUGIN_DIR, 1);  // for the OIIO programs the tests run
+    }
 };
 const auto* const environment = ::testing::AddGlobalTestEnvironment(new PluginEnvironment);
 
@@ -222,22 +226,19 @@ TEST(PluginImageInput, BadFilesFailWithTheFileAndTheProblem)
 
 // ---- OIIO's tools -------------------------------------------------------------------------------
 
-std::string with_plugin(const std::string& command) { return "OIIO_LIBRARY_PATH=" STOCHTEX_PLUGIN_DIR " " + command; }
-
 TEST(PluginTools, OiiotoolListsTheMipLevelsAndWritesLevelZero)
 {
-    if (test::run_command("command -v oiiotool").status != 0) GTEST_SKIP() << "oiiotool is not installed";
+    if (!test::on_path("oiiotool")) GTEST_SKIP() << "oiiotool is not installed";
     const std::string dir = test::temp_dir("plugin-oiiotool");
     const std::string path = write_texture(dir, "t.stex", layout(64, 32, 16));
-    const test::CommandResult info = test::run_command(with_plugin("oiiotool --info -v " + test::shell_quote(path)));
-    ASSERT_EQ(info.status, 0) << info.output;
-    EXPECT_NE(info.output.find(":   64 x   32, 3 channel, float stex"), std::string::npos) << info.output;
-    EXPECT_NE(info.output.find("MIP-map levels: 64x32 32x16 16x8 8x4 4x2 2x1 1x1"), std::string::npos) << info.output;
+    const test::ProgramResult info = test::run_program({"oiiotool", "--info", "-v", path}, dir);
+    ASSERT_TRUE(info.succeeded()) << info;
+    EXPECT_TRUE(test::contains(info.out, ":   64 x   32, 3 channel, float stex")) << info;
+    EXPECT_TRUE(test::contains(info.out, "MIP-map levels: 64x32 32x16 16x8 8x4 4x2 2x1 1x1")) << info;
 
     const std::string exr = dir + "/out.exr";
-    const test::CommandResult convert =
-        test::run_command(with_plugin("oiiotool " + test::shell_quote(path) + " -o " + test::shell_quote(exr)));
-    ASSERT_EQ(convert.status, 0) << convert.output;
+    const test::ProgramResult convert = test::run_program({"oiiotool", path, "-o", exr}, dir);
+    ASSERT_TRUE(convert.succeeded()) << convert;
     int width = 0, height = 0;
     const std::vector<float> written = read_level(exr, 0, &width, &height);
     EXPECT_EQ(width, 64);
@@ -245,16 +246,16 @@ TEST(PluginTools, OiiotoolListsTheMipLevelsAndWritesLevelZero)
     EXPECT_EQ(written, core_level(read_stex(path), layout(64, 32, 16), 0));
 
     // Open hints from the command line.
-    const test::CommandResult hinted = test::run_command(
-        with_plugin("oiiotool --iconfig stex:width 20 --iconfig stex:height 10 --info " + test::shell_quote(path)));
-    EXPECT_NE(hinted.output.find(":   20 x   10, 3 channel"), std::string::npos) << hinted.output;
+    const test::ProgramResult hinted = test::run_program(
+        {"oiiotool", "--iconfig", "stex:width", "20", "--iconfig", "stex:height", "10", "--info", path}, dir);
+    EXPECT_TRUE(test::contains(hinted.out, ":   20 x   10, 3 channel")) << hinted;
 }
 
 TEST(PluginTools, PythonBindingsReadIt)
 {
-    if (test::run_command("/usr/bin/python3 -c 'import OpenImageIO'").status != 0)
-        GTEST_SKIP() << "python3-openimageio is not installed";
     const std::string dir = test::temp_dir("plugin-python");
+    if (!test::run_program({"/usr/bin/python3", "-c", "import OpenImageIO"}, dir).succeeded())
+        GTEST_SKIP() << "python3-openimageio is not installed";
     const std::string path = write_texture(dir, "t.stex", layout(32, 16, 16));
     const std::string script = "import OpenImageIO as oiio\n"
                                "i = oiio.ImageInput.open('" + path + "')\n"
@@ -263,12 +264,12 @@ TEST(PluginTools, PythonBindingsReadIt)
                                "p = i.read_image(0, 0, 0, 3, 'float')\n"
                                "print(s.width, s.height, s.nchannels, '%.6f' % p[0][0][0])\n";
     std::ofstream(dir + "/read.py") << script;
-    const test::CommandResult result = test::run_command(with_plugin("/usr/bin/python3 " + test::shell_quote(dir + "/read.py")));
-    ASSERT_EQ(result.status, 0) << result.output;
+    const test::ProgramResult result = test::run_program({"/usr/bin/python3", dir + "/read.py"}, dir);
+    ASSERT_TRUE(result.succeeded()) << result;
     const std::vector<float> level = core_level(read_stex(path), layout(32, 16, 16), 0);
     char expected[64];
     std::snprintf(expected, sizeof expected, "32 16 3 %.6f", level[0]);
-    EXPECT_NE(result.output.find(expected), std::string::npos) << result.output << " (expected " << expected << ")";
+    EXPECT_TRUE(test::contains(result.out, expected)) << result << " (expected " << expected << ")";
 }
 
 // ---- TextureSystem ------------------------------------------------------------------------------

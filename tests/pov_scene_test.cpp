@@ -17,10 +17,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
@@ -34,8 +30,6 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
-
 namespace fs = std::filesystem;
 using namespace stochtex;
 
@@ -43,17 +37,8 @@ namespace {
 
 // ---- Running programs ----------------------------------------------------------------------------
 
-struct RunResult {
-    bool exited = false;
-    int code = -1;
-    std::string output;  ///< stdout and stderr together
-};
-
-std::ostream& operator<<(std::ostream& os, const RunResult& r)
-{
-    return os << (r.exited ? "exit code " + std::to_string(r.code) : std::string("killed by a signal")) << "\n"
-              << r.output;
-}
+using RunResult = test::ProgramResult;
+using test::contains;
 
 std::string read_text(const fs::path& path)
 {
@@ -62,33 +47,7 @@ std::string read_text(const fs::path& path)
 }
 
 /// Runs argv[0] (a path, or a name looked up on PATH) without a shell; output captured in dir.
-RunResult run(const std::vector<std::string>& args, const fs::path& dir)
-{
-    const fs::path log = dir / "output.txt";
-    std::vector<std::string> strings = args;
-    std::vector<char*> argv;
-    for (std::string& arg : strings) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, 1, 2);
-    pid_t pid = 0;
-    const int error = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    RunResult result;
-    if (error != 0) {
-        ADD_FAILURE() << "cannot run " << argv[0] << ": " << std::strerror(error);
-        return result;
-    }
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    result.exited = WIFEXITED(status);
-    result.code = result.exited ? WEXITSTATUS(status) : -1;
-    result.output = read_text(log);
-    return result;
-}
+RunResult run(const std::vector<std::string>& args, const fs::path& dir) { return test::run_program(args, dir.string()); }
 
 RunResult stex(const std::vector<std::string>& args, const fs::path& dir)
 {
@@ -96,17 +55,6 @@ RunResult stex(const std::vector<std::string>& args, const fs::path& dir)
     all.insert(all.end(), args.begin(), args.end());
     return run(all, dir);
 }
-
-bool povray_on_path()
-{
-    const char* path = std::getenv("PATH");
-    std::stringstream folders(path ? path : "");
-    for (std::string folder; std::getline(folders, folder, ':');)
-        if (!folder.empty() && access((fs::path(folder) / "povray").c_str(), X_OK) == 0) return true;
-    return false;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const fs::path scenes_dir = fs::path(STOCHTEX_SOURCE_DIR) / "scenes" / "pov";
 
@@ -216,7 +164,7 @@ protected:
 
     void SetUp() override
     {
-        if (!povray_on_path()) GTEST_SKIP() << "povray is not on PATH (apt-get install povray)";
+        if (!test::on_path("povray")) GTEST_SKIP() << "povray is not on PATH (apt-get install povray)";
         ASSERT_TRUE(fs::exists(texture_path)) << "the shared texture could not be analysed";
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = test::temp_dir(std::string("pov-scene-") + info->name());
@@ -355,8 +303,8 @@ TEST_F(PovScene, ShowcaseRendersWithoutWarnings)
     ASSERT_TRUE(r.exited && r.code == 0) << r;
     // POV-Ray prints its option summary ("Warning Stream to console...On"); a warning itself
     // reads "… Warning: …".
-    EXPECT_FALSE(contains(r.output, "Warning:")) << r;
-    EXPECT_FALSE(contains(r.output, "Possible Parse Error")) << r;
+    EXPECT_FALSE(contains(r.output(), "Warning:")) << r;
+    EXPECT_FALSE(contains(r.output(), "Possible Parse Error")) << r;
     const Image image = read_image_linear((dir / "showcase.png").string());
     EXPECT_EQ(image.width, 160);
     const auto mean = channel_means(image);
@@ -383,7 +331,7 @@ void expect_error(const RunResult& r, const std::vector<std::string>& named)
 {
     ASSERT_TRUE(r.exited) << r;
     EXPECT_EQ(r.code, 1) << r;
-    for (const std::string& word : named) EXPECT_TRUE(contains(r.output, word)) << "no '" << word << "' in\n" << r;
+    for (const std::string& word : named) EXPECT_TRUE(contains(r.output(), word)) << "no '" << word << "' in\n" << r;
 }
 
 TEST_F(PovCli, MissingTextureIsAnError)
@@ -409,7 +357,7 @@ TEST_F(PovCli, BadModeIsAnError)
     const RunResult r = stex({"pov", texture.string(), "-o", (dir / "out.inc").string(), "--mode", "wireframe"}, dir);
     ASSERT_TRUE(r.exited) << r;
     EXPECT_NE(r.code, 0) << r;
-    EXPECT_TRUE(contains(r.output, "--mode")) << r;
+    EXPECT_TRUE(contains(r.output(), "--mode")) << r;
     EXPECT_FALSE(fs::exists(dir / "out.inc"));
 }
 
@@ -418,9 +366,9 @@ TEST_F(PovCli, HelpListsOptions)
     const RunResult r = stex({"pov", "--help"}, dir);
     ASSERT_TRUE(r.exited && r.code == 0) << r;
     for (const char* word : {"texture", "--output", "--name", "--mode", "procedural", "baked", "--bake-size"})
-        EXPECT_TRUE(contains(r.output, word)) << "stex pov --help lacks " << word << "\n" << r;
+        EXPECT_TRUE(contains(r.output(), word)) << "stex pov --help lacks " << word << "\n" << r;
     const RunResult missing = stex({}, dir);
-    EXPECT_TRUE(contains(missing.output, "pov")) << "the sub-command list lacks pov\n" << missing;
+    EXPECT_TRUE(contains(missing.output(), "pov")) << "the sub-command list lacks pov\n" << missing;
 }
 
 TEST_F(PovCli, ModelWithoutProceduralFormSuggestsBakedMode)

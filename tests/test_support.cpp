@@ -2,10 +2,20 @@
 
 #include <filesystem>
 
+#include <cerrno>
+#include <cstdlib>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -30,6 +40,68 @@ std::string temp_dir(const std::string& test_name)
     fs::create_directories(dir);
     return dir.string();
 }
+
+std::ostream& operator<<(std::ostream& os, const ProgramResult& r)
+{
+    if (r.exited)
+        os << "exit code " << r.code;
+    else
+        os << "killed by signal " << r.signal;
+    return os << "\n--- stdout ---\n" << r.out << "--- stderr ---\n" << r.err;
+}
+
+namespace {
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+ProgramResult run_program(const std::vector<std::string>& args, const std::string& dir)
+{
+    const fs::path out_path = fs::path(dir) / "stdout.txt", err_path = fs::path(dir) / "stderr.txt";
+    std::vector<std::string> strings = args;
+    std::vector<char*> argv;
+    for (std::string& arg : strings) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = 0;
+    const int spawn_error = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+
+    ProgramResult result;
+    if (spawn_error != 0) {
+        result.err = "cannot run " + args[0] + ": " + std::strerror(spawn_error);
+        return result;
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    result.exited = WIFEXITED(status);
+    result.code = result.exited ? WEXITSTATUS(status) : -1;
+    result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    result.out = read_text(out_path);
+    result.err = read_text(err_path);
+    return result;
+}
+
+bool on_path(const std::string& name)
+{
+    const char* path = std::getenv("PATH");
+    std::stringstream folders(path ? path : "");
+    for (std::string folder; std::getline(folders, folder, ':');)
+        if (!folder.empty() && access((fs::path(folder) / name).c_str(), X_OK) == 0) return true;
+    return false;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 CommandResult run_command(const std::string& command_line)
 {

@@ -1,7 +1,9 @@
 // Shared helpers for the tests: where the exemplars are, temporary files.
 #pragma once
 
+#include <ostream>
 #include <string>
+#include <vector>
 
 namespace stochtex::test {
 
@@ -12,7 +14,26 @@ std::string repo_exemplar(const std::string& name);
 /// A fresh, empty directory for this test's files, private to this process.
 std::string temp_dir(const std::string& test_name);
 
-/// Runs a shell command line; returns its exit status and its stdout and stderr together.
+/// How a program run ended and what it printed.
+struct ProgramResult {
+    bool exited = false;  ///< false: killed by a signal (a crash)
+    int code = -1;        ///< exit code when `exited`
+    int signal = 0;       ///< the signal otherwise
+    std::string out, err;
+    std::string output() const { return out + err; }
+    bool succeeded() const { return exited && code == 0; }
+};
+std::ostream& operator<<(std::ostream& os, const ProgramResult& r);
+
+/// Runs argv[0] (a path, or a name looked up on PATH) directly — no shell, so no quoting —
+/// with stdout and stderr captured through files in `dir`.
+ProgramResult run_program(const std::vector<std::string>& argv, const std::string& dir);
+/// Whether an executable called `name` is on PATH (tests of optional tools skip without it).
+bool on_path(const std::string& name);
+bool contains(const std::string& text, const std::string& part);
+
+/// Runs a shell command line (for pipelines and `cd`); returns its exit status and its stdout
+/// and stderr together. Prefer run_program() where no shell is needed.
 struct CommandResult {
     int status = -1;
     std::string output;
