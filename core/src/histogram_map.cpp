@@ -34,17 +34,34 @@ MonotoneCubic::MonotoneCubic(std::vector<double> x, std::vector<double> y) : x_(
             slope_[i + 1] = tau * beta * secant[i];
         }
     }
+    // The cubic Hermite segment in monomial form (same function; Horner's rule to evaluate).
+    inverse_width_.resize(n - 1), c1_.resize(n - 1), c2_.resize(n - 1), c3_.resize(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        const double h = x_[i + 1] - x_[i], rise = y_[i + 1] - y_[i];
+        inverse_width_[i] = 1 / h;
+        c1_[i] = h * slope_[i];
+        c2_[i] = 3 * rise - 2 * h * slope_[i] - h * slope_[i + 1];
+        c3_[i] = -2 * rise + h * slope_[i] + h * slope_[i + 1];
+    }
+    const double step = (x_.back() - x_.front()) / double(n - 1);
+    uniform_ = true;
+    for (std::size_t i = 0; i < n && uniform_; ++i)
+        uniform_ = std::fabs(x_[i] - (x_.front() + double(i) * step)) <= 1e-9 * step;
+    inverse_step_ = 1 / step;
 }
 
 double MonotoneCubic::operator()(double t) const
 {
     if (t <= x_.front()) return y_.front();
     if (t >= x_.back()) return y_.back();
-    const std::size_t i = std::size_t(std::upper_bound(x_.begin(), x_.end(), t) - x_.begin()) - 1;
-    const double h = x_[i + 1] - x_[i];
-    const double s = (t - x_[i]) / h, s2 = s * s, s3 = s2 * s;
-    return (2 * s3 - 3 * s2 + 1) * y_[i] + (s3 - 2 * s2 + s) * h * slope_[i] + (-2 * s3 + 3 * s2) * y_[i + 1] +
-           (s3 - s2) * h * slope_[i + 1];
+    std::size_t i = uniform_ ? std::size_t((t - x_.front()) * inverse_step_)
+                             : std::size_t(std::upper_bound(x_.begin(), x_.end(), t) - x_.begin()) - 1;
+    // Rounding at a knot may pick the neighbouring segment: step back into the right one.
+    if (i > x_.size() - 2) i = x_.size() - 2;
+    if (t < x_[i]) --i;
+    else if (t >= x_[i + 1] && i + 2 < x_.size()) ++i;
+    const double s = (t - x_[i]) * inverse_width_[i];
+    return y_[i] + s * (c1_[i] + s * (c2_[i] + s * c3_[i]));
 }
 
 EmpiricalDistribution::EmpiricalDistribution(const std::vector<float>& values, int bins)

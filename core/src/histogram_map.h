@@ -21,9 +21,17 @@ public:
 
     double operator()(double t) const;
     bool empty() const { return x_.empty(); }
+    /// The Hermite tangents at the knots (after the Fritsch–Carlson limiter), for exporters.
+    const std::vector<double>& slopes() const { return slope_; }
 
 private:
     std::vector<double> x_, y_, slope_;
+    // Evaluation form (a hot path of synthesis): per segment i, with s = (t − x_i)/h_i,
+    // f = y_i + s·(c1 + s·(c2 + s·c3)); knots fitted by the analysis are uniform in z, so the
+    // segment is found by one multiplication instead of a binary search.
+    std::vector<double> inverse_width_, c1_, c2_, c3_;
+    bool uniform_ = false;
+    double inverse_step_ = 0;
 };
 
 /// The channel's value distribution summarised by a fine histogram, for Gaussianisation and
