@@ -1,0 +1,87 @@
+"""What the panel edits, stored on each material (material.stochtex) and saved with the blend."""
+
+import bpy
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
+                       PointerProperty, StringProperty)
+
+MAX_BANDS = 16  # gains shown for the finest 16 bands (a 2^17-pixel photo would have more)
+
+
+def has_osl():
+    """Official builds have OSL (Cycles, CPU); Debian's Blender 3.4 has not."""
+    return bool(getattr(bpy.app.build_options, "cycles_osl", False))
+
+
+_BAKED = ("BAKED", "Baked map", "The core bakes a tiled, MIP-mapped EXR; an Image Texture node reads it "
+          "(Cycles and EEVEE, CPU and GPU)")
+_SOLID = ("SOLID", "Solid map", "The solid (3D) texture baked onto the active object's UV map: continuous "
+          "across sharp edges and UV seams (Cycles and EEVEE, CPU and GPU; one map per object)")
+_OSL = ("OSL", "OSL shader", "The texture evaluated per shading point by a generated OSL shader "
+        "(Cycles CPU with Open Shading Language on)")
+# Blender keeps only pointers to a dynamic enum's strings: the lists must outlive the callback.
+_ROUTES_WITHOUT_OSL = [_BAKED, _SOLID]
+_ROUTES_WITH_OSL = [_BAKED, _SOLID, _OSL]
+
+
+def _routes(self, context):
+    return _ROUTES_WITH_OSL if has_osl() else _ROUTES_WITHOUT_OSL
+
+
+class StochtexPreferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+
+    stex_path: StringProperty(name="stex executable", subtype="FILE_PATH",
+                              description="Path of the stex tool; empty: $STOCHTEX_STEX, then PATH")
+
+    def draw(self, context):
+        self.layout.prop(self, "stex_path")
+
+
+class StochtexSettings(bpy.types.PropertyGroup):
+    # Analysis
+    image: PointerProperty(type=bpy.types.Image, name="Photo",
+                           description="The photo to analyse (empty: the active Image Texture node's image)")
+    model: EnumProperty(name="Model", default="wavelet", items=[
+        ("wavelet", "Wavelet noise", "Isotropic stochastic textures (concrete, sand, rust, gravel from afar)"),
+        ("gabor", "Gabor noise", "Random-phase Gabor octaves, optionally oriented (docs/models/gabor.md); "
+         "baked and solid routes")])
+    histogram: EnumProperty(name="Histogram", default="auto", items=[
+        ("auto", "Auto", "Match each channel's histogram where it measurably helps"),
+        ("on", "On", "Always match the photo's histograms"),
+        ("off", "Off", "Gaussian channels")])
+    unit_size: FloatProperty(name="Photo width", default=1.0, min=1e-4, unit="LENGTH",
+                             description="Physical width of the photo: the texture's scale on objects")
+    # The result
+    stex_text: PointerProperty(type=bpy.types.Text, name="Texture",
+                               description="The analysed .stex, stored in the blend as a text block")
+    # Tweaks (applied to a copy; the analysis stays as it was)
+    seed: IntProperty(name="Seed", default=1, min=0, description="Another instance with the same statistics")
+    band_gains: FloatVectorProperty(name="Band gains", size=MAX_BANDS, default=[1.0] * MAX_BANDS, min=0.0, max=4.0,
+                                    description="Multiplies each band's weights; band 0 is the finest grain")
+    use_histograms: BoolProperty(name="Histograms", default=True,
+                                 description="Off: every channel Gaussian (softer, no long tails)")
+    morph_text: PointerProperty(type=bpy.types.Text, name="Morph to",
+                                description="Another analysed texture (.stex text) of the same model")
+    morph_t: FloatProperty(name="Morph", default=0.0, min=0.0, max=1.0, subtype="FACTOR")
+    # Rendering
+    route: EnumProperty(name="Route", items=_routes)
+    coordinates: EnumProperty(name="Coordinates", default="UV", items=[
+        ("UV", "UV", "The active UV map; Repeats periods per UV unit"),
+        ("OBJECT", "Object", "Object space, metres: the texture keeps its physical size"),
+        ("GENERATED", "Generated", "The object's bounding box, 0 to 1")])
+    solid: BoolProperty(name="Solid", default=False,
+                        description="OSL route: the solid (3D) texture, continuous across sharp edges")
+    uv_repeats: FloatProperty(name="Repeats", default=1.0, min=1e-3, description="Baked periods per UV unit")
+    bake_size: IntProperty(name="Bake size", default=1024, min=64, max=16384,
+                           description="Texels per side of the baked map (one seamless period)")
+
+
+classes = [StochtexPreferences, StochtexSettings]
+
+
+def register():
+    bpy.types.Material.stochtex = PointerProperty(type=StochtexSettings)
+
+
+def unregister():
+    del bpy.types.Material.stochtex

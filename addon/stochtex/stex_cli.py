@@ -1,0 +1,192 @@
+"""The add-on's only way to the stochtex core: the `stex` command-line tool, run as a subprocess.
+
+Pure Python (no bpy, no numpy): tests/addon/ runs it with the system Python.
+
+Why the CLI and not a C API loaded with ctypes (docs/blender.md): the core links OpenImageIO,
+OpenEXR and OpenColorIO, and Blender links its own copies of the same libraries (official builds
+bundle other versions than the system's); loading both into Blender's process invites symbol
+clashes that crash Blender. A subprocess keeps them apart, runs big bakes on all cores without
+holding Python's GIL, can be cancelled at any moment by killing it, and a crash in it is an
+error message, not a lost scene. The CLI's option names are already a stable public interface
+(cli/commands.h); `stex --progress-lines` gives machine-readable progress.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import threading
+
+
+class StexError(Exception):
+    """A problem to show the user as it is: it names the file or option at fault."""
+
+
+def find_stex(preference=""):
+    """The stex executable: the add-on preference, $STOCHTEX_STEX, then PATH."""
+    for candidate in (preference, os.environ.get("STOCHTEX_STEX", "")):
+        if candidate:
+            path = os.path.abspath(os.path.expanduser(candidate))
+            if os.path.isfile(path) and os.access(path, os.X_OK):
+                return path
+            raise StexError("stex executable not found at '%s' (add-on preferences or $STOCHTEX_STEX)" % candidate)
+    found = shutil.which("stex")
+    if not found:
+        raise StexError("the stex tool is not installed: put it on PATH, set $STOCHTEX_STEX, "
+                        "or set its path in the add-on preferences")
+    return found
+
+
+def analyze_args(photo, output, model="wavelet", histogram="auto", seed=1, unit_size_m=1.0):
+    return ["analyze", photo, "-o", output, "--model", model, "--histogram", histogram,
+            "--seed", str(int(seed)), "--unit-size", repr(float(unit_size_m))]
+
+
+def bake_args(texture, output, size, half=True):
+    args = ["bake", texture, "-o", output, "--size", str(int(size))]
+    return args + (["--half"] if half else [])
+
+
+def solid_bake_args(texture, output, positions, units_per_position):
+    return ["bake", texture, "-o", output, "--positions", positions, "--position-scale", repr(float(units_per_position))]
+
+
+def osl_args(texture, output):
+    return ["osl", texture, "-o", output]
+
+
+def morph_args(a, b, t, output):
+    return ["morph", a, b, "--t", repr(float(t)), "-o", output]
+
+
+class StexJob:
+    """One `stex` run in the background. poll() never blocks: the UI keeps running.
+
+    Progress comes from the "progress FRACTION STAGE" lines of `stex --progress-lines`; the
+    error message is stex's own "stex: error: ..." line.
+    """
+
+    def __init__(self, executable, args):
+        self.command = [executable, "--progress-lines"] + list(args)
+        self.fraction = 0.0
+        self.stage = "starting"
+        self._stderr = []
+        # Below the UI's priority: a bake uses every core, and Blender must keep drawing.
+        lower_priority = (lambda: os.nice(10)) if hasattr(os, "nice") else None
+        try:
+            self._process = subprocess.Popen(self.command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                             stdin=subprocess.DEVNULL, text=True, preexec_fn=lower_priority)
+        except OSError as error:
+            raise StexError("cannot run %s: %s" % (executable, error.strerror)) from None
+        self._stdout = ""
+        self._reader = threading.Thread(target=self._read_stderr, daemon=True)
+        self._reader.start()
+
+    def _read_stderr(self):
+        for line in self._process.stderr:
+            parts = line.split()
+            if len(parts) >= 2 and parts[0] == "progress":
+                try:
+                    self.fraction = float(parts[1])
+                    self.stage = " ".join(parts[2:]) or self.stage
+                    continue
+                except ValueError:
+                    pass
+            self._stderr.append(line.rstrip("\n"))
+
+    def poll(self):
+        """None while running; else the stdout text. Raises StexError if stex failed."""
+        if self._process.poll() is None:
+            return None
+        return self._finish()
+
+    def wait(self):
+        self._process.wait()
+        return self._finish()
+
+    def _finish(self):
+        self._stdout = self._process.stdout.read()
+        self._reader.join()
+        if self._process.returncode != 0:
+            raise StexError(error_message(self._stderr, self._process.returncode))
+        return self._stdout
+
+    def cancel(self):
+        if self._process.poll() is None:
+            self._process.kill()
+            self._process.wait()
+        self._reader.join()
+
+
+def error_message(stderr_lines, returncode):
+    """stex's own message without the "stex: error: " prefix, else the last lines it printed."""
+    for line in stderr_lines:
+        if line.startswith("stex: error: "):
+            return line[len("stex: error: "):]
+    text = " ".join(line.strip() for line in stderr_lines[-3:] if line.strip())
+    if returncode < 0:
+        return "stex was killed by signal %d %s" % (-returncode, text)
+    return text or ("stex failed with exit status %d" % returncode)
+
+
+def run(executable, args):
+    """Runs stex to completion (background mode, tests); returns stdout."""
+    return StexJob(executable, args).wait()
+
+
+# ---- The .stex text: reading and the artist's tweaks ---------------------------------------------
+
+def parse_stex(text, name="texture"):
+    try:
+        data = json.loads(text)
+    except ValueError as error:
+        raise StexError("%s: not a .stex file (%s)" % (name, error)) from None
+    if not isinstance(data, dict) or data.get("format") != "stex":
+        raise StexError("%s: not a .stex file (no \"format\": \"stex\")" % name)
+    return data
+
+
+def band_count(data):
+    weights = data.get("parameters", {}).get("band_weights")
+    return len(weights[0]) if weights else 0
+
+
+def apply_tweaks(text, seed=None, band_gains=None, histograms=True, name="texture"):
+    """The .stex text with the panel's tweaks applied; the stored analysis is never changed.
+
+    seed: another instance of the same texture; band_gains[j] multiplies every channel's weight
+    of band j (0 removes a band: coarser or finer grain); histograms=False makes every channel
+    Gaussian (the format's null map). `stex` validates the result when it reads it.
+    """
+    data = parse_stex(text, name)
+    if seed is not None:
+        data["seed"] = int(seed) & 0xFFFFFFFF
+    if band_gains:
+        weights = data.get("parameters", {}).get("band_weights")
+        if weights is None:
+            raise StexError("%s: band gains need a model with band weights (wavelet)" % name)
+        for channel in weights:
+            for j in range(min(len(channel), len(band_gains))):
+                channel[j] = channel[j] * max(0.0, float(band_gains[j]))
+    if not histograms:
+        data["histograms"] = [None, None, None]
+    return json.dumps(data, indent=2) + "\n"
+
+
+def period_units(data, size, scale=1.0):
+    """Texture units covered by a bake of `size` texels (stex bake: size · scale / ppu)."""
+    return size * scale / float(data["scale"]["pixels_per_unit"])
+
+
+class WorkDir:
+    """A private temporary folder for one operation; removed on cancel or error."""
+
+    def __init__(self):
+        self.path = tempfile.mkdtemp(prefix="stochtex-blender-")
+
+    def file(self, name):
+        return os.path.join(self.path, name)
+
+    def remove(self):
+        shutil.rmtree(self.path, ignore_errors=True)

@@ -1,0 +1,88 @@
+"""The panel, in two places: the Shader Editor's sidebar (tab "stochtex") and Material properties."""
+
+import bpy
+
+from . import stex_cli
+from .properties import has_osl
+
+
+def draw_settings(layout, mat):
+    settings = mat.stochtex
+    box = layout.box()
+    box.label(text="1. Analyse a photo", icon="IMAGE_DATA")
+    box.template_ID(settings, "image", open="image.open")
+    row = box.row()
+    row.prop(settings, "model", text="")
+    row.prop(settings, "histogram", text="")
+    box.prop(settings, "unit_size")
+    box.operator("stochtex.analyze", icon="SHADING_TEXTURE")
+
+    box = layout.box()
+    box.label(text="2. Render", icon="MATERIAL")
+    box.prop(settings, "route", text="")
+    if not has_osl():
+        box.label(text="No OSL in this build", icon="INFO")
+    if settings.route != "SOLID":
+        box.prop(settings, "coordinates", text="")
+        if settings.coordinates != "OBJECT":
+            box.prop(settings, "uv_repeats")
+    if settings.route == "OSL":
+        box.prop(settings, "solid")
+    else:
+        box.prop(settings, "bake_size")
+
+    box = layout.box()
+    box.label(text="3. Tweak", icon="MODIFIER")
+    box.prop(settings, "stex_text", text="")
+    if settings.stex_text is None:
+        box.label(text="Analyse a photo first")
+        return
+    try:
+        bands = stex_cli.band_count(stex_cli.parse_stex(settings.stex_text.as_string(), settings.stex_text.name))
+    except stex_cli.StexError as error:
+        box.label(text=str(error), icon="ERROR")
+        return
+    box.prop(settings, "seed")
+    box.prop(settings, "use_histograms")
+    column = box.column(align=True)
+    column.label(text="Band gains (0 = finest grain)")
+    for j in range(min(bands, len(settings.band_gains))):
+        column.prop(settings, "band_gains", index=j, text="band %d" % j)
+    box.label(text="Morph to")
+    box.prop(settings, "morph_text", text="")
+    if settings.morph_text is not None:
+        box.prop(settings, "morph_t", slider=True)
+    box.operator("stochtex.rebuild", icon="FILE_REFRESH")
+
+
+class STOCHTEX_PT_node_editor(bpy.types.Panel):
+    bl_label = "stochtex"
+    bl_space_type = "NODE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "stochtex"
+
+    @classmethod
+    def poll(cls, context):
+        space = context.space_data
+        return space is not None and space.tree_type == "ShaderNodeTree" and context.material is not None
+
+    def draw(self, context):
+        draw_settings(self.layout, context.material)
+
+
+class STOCHTEX_PT_material(bpy.types.Panel):
+    bl_label = "stochtex"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "material"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.material is not None
+
+    def draw(self, context):
+        draw_settings(self.layout, context.material)
+
+
+classes = [STOCHTEX_PT_node_editor, STOCHTEX_PT_material]

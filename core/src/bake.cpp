@@ -1,0 +1,220 @@
+#include <stochtex/bake.h>
+#include <stochtex/error.h>
+#include <stochtex/mip_image.h>
+#include <stochtex/texture.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <thread>
+#include <vector>
+
+namespace stochtex {
+
+namespace {
+
+/// Fills one row of tiles (tile_height rows of the level, whole width) on `threads` workers,
+/// each taking tiles from a shared counter: the strip is the same whatever the thread count.
+void fill_strip(const MipImage& image, int level, int y0, int rows, int tile_width, int threads, float* strip)
+{
+    const int width = image.level_width(level);
+    const int tiles = (width + tile_width - 1) / tile_width;
+    std::atomic<int> next{0};
+    auto work = [&] {
+        std::vector<float> tile(std::size_t(tile_width) * rows * 3);
+        for (int t; (t = next.fetch_add(1)) < tiles;) {
+            const int x0 = t * tile_width, w = std::min(tile_width, width - x0);
+            image.fill(level, x0, y0, w, rows, tile.data());
+            for (int y = 0; y < rows; ++y)
+                std::copy_n(&tile[std::size_t(y) * w * 3], std::size_t(w) * 3, strip + (std::size_t(y) * width + x0) * 3);
+        }
+    };
+    const int count = std::max(1, std::min(threads, tiles));
+    std::vector<std::thread> workers;
+    for (int i = 1; i < count; ++i) workers.emplace_back(work);
+    work();
+    for (auto& worker : workers) worker.join();
+}
+
+}  // namespace
+
+BakeSummary bake_mip_image(const TextureDescription& description, const std::string& path, const BakeOptions& options,
+                           const ProgressCallback& progress)
+{
+    ImageLayout layout;
+    layout.width = options.width;
+    layout.height = options.height;
+    layout.tile_width = layout.tile_height = options.tile_size;
+    layout.scale = options.scale;
+    layout.channels = "RGB";
+    const MipImage image(description, layout, path);  // validates the description and the layout
+
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    if (!output->supports("tiles") || !output->supports("mipmap"))
+        throw Error(path + ": the " + std::string(output->format_name()) + " format cannot hold a tiled, MIP-mapped image; use .exr");
+
+    const int threads = options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    double total_texels = 0, done_texels = 0;
+    for (int level = 0; level < image.level_count(); ++level)
+        total_texels += double(image.level_width(level)) * image.level_height(level);
+
+    const std::string temporary = path + ".tmp";
+    auto fail = [&](const std::string& what) {
+        output->close();
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        return Error(path + ": " + what);
+    };
+    for (int level = 0; level < image.level_count(); ++level) {
+        const int width = image.level_width(level), height = image.level_height(level);
+        OIIO::ImageSpec spec(width, height, 3, options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+        spec.tile_width = spec.tile_height = options.tile_size;
+        spec.attribute("oiio:ColorSpace", "Linear");
+        spec.attribute("textureformat", "Plain Texture");
+        spec.attribute("wrapmodes", "periodic,periodic");
+        spec.attribute("openexr:levelmode", 1);  // MIPMAP_LEVELS: our levels, not generated ones
+        spec.attribute("openexr:roundingmode", 0);  // ROUND_DOWN: sizes halve as MipImage's do
+        spec.attribute("compression", "zip");
+        spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
+        spec.attribute("stochtex:source", description.provenance.source);
+        const auto mode = level == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
+        if (!output->open(temporary, spec, mode)) throw fail("cannot write MIP level " + std::to_string(level) + ": " + output->geterror());
+        std::vector<float> strip(std::size_t(width) * options.tile_size * 3);
+        for (int y0 = 0; y0 < height; y0 += options.tile_size) {
+            const int rows = std::min(options.tile_size, height - y0);
+            fill_strip(image, level, y0, rows, options.tile_size, threads, strip.data());
+            if (!output->write_tiles(0, width, y0, y0 + rows, 0, 1, OIIO::TypeDesc::FLOAT, strip.data()))
+                throw fail("cannot write tiles: " + output->geterror());
+            done_texels += double(width) * rows;
+            if (progress) progress(done_texels / total_texels, "bake");
+        }
+    }
+    if (!output->close()) throw fail("cannot finish the file: " + output->geterror());
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+        std::filesystem::remove(temporary, error);
+        throw Error(path + ": cannot move the finished bake into place: " + error.message());
+    }
+    return {image.level_count(), image.period()[0], image.period()[1]};
+}
+
+}  // namespace stochtex
+
+namespace stochtex {
+
+namespace {
+
+struct PositionMap {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // raw values: positions are data, never colour-converted
+    const float* at(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+    bool covered(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height && at(x, y)[3] > 0; }
+};
+
+PositionMap read_positions(const std::string& path)
+{
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) throw Error(path + ": cannot read the position map: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.nchannels < 4) throw Error(path + ": a position map needs RGBA (positions and coverage)");
+    PositionMap map;
+    map.width = spec.width;
+    map.height = spec.height;
+    map.rgba.resize(std::size_t(map.width) * map.height * 4);
+    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, map.rgba.data()))
+        throw Error(path + ": cannot read the position map: " + input->geterror());
+    return map;
+}
+
+/// The position derivative along one axis of the map: the shorter of the two one-sided
+/// differences to covered neighbours. At an island's border (or a margin's rim) the neighbour
+/// across it is another part of the surface or empty space; the shorter difference is the one
+/// along the surface, so the footprint does not blow up there. Zero for a lone texel.
+Vec3 derivative(const PositionMap& map, int x, int y, int dx, int dy, double scale)
+{
+    const float* here = map.at(x, y);
+    Vec3 best{0, 0, 0};
+    double best_length = -1;
+    for (int side : {1, -1}) {
+        if (!map.covered(x + side * dx, y + side * dy)) continue;
+        const float* there = map.at(x + side * dx, y + side * dy);
+        const Vec3 d{(there[0] - here[0]) * scale, (there[1] - here[1]) * scale, (there[2] - here[2]) * scale};
+        const double length = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if (best_length < 0 || length < best_length) best = d, best_length = length;
+    }
+    return best;
+}
+
+}  // namespace
+
+BakeSummary bake_solid_map(const TextureDescription& description, const std::string& positions_path,
+                           const std::string& path, double units_per_position, int threads,
+                           const ProgressCallback& progress)
+{
+    if (!(units_per_position > 0) || !std::isfinite(units_per_position))
+        throw Error("solid bake: the position scale must be positive");
+    const auto texture = make_texture(description);
+    const PositionMap map = read_positions(positions_path);
+    std::vector<float> out(map.rgba.size(), 0.0f);
+    const int workers = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    std::atomic<int> next_row{0}, rows_done{0};
+    auto work = [&] {
+        for (int y; (y = next_row.fetch_add(1)) < map.height;) {
+            for (int x = 0; x < map.width; ++x) {
+                if (!map.covered(x, y)) continue;
+                const float* p = map.at(x, y);
+                SurfacePoint point;
+                point.p = {p[0] * units_per_position, p[1] * units_per_position, p[2] * units_per_position};
+                point.n = {0, 0, 0};  // the derivatives lie on the surface already
+                point.dpdx = derivative(map, x, y, 1, 0, units_per_position);
+                point.dpdy = derivative(map, x, y, 0, 1, units_per_position);
+                const Rgb value = texture->eval_solid(point);
+                float* texel = &out[(std::size_t(y) * map.width + x) * 4];
+                texel[0] = value[0], texel[1] = value[1], texel[2] = value[2], texel[3] = 1.0f;
+            }
+            rows_done.fetch_add(1);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < std::min(workers, map.height); ++i) pool.emplace_back(work);
+    if (progress) {
+        // Progress from the calling thread only (progress.h), while it also works.
+        std::thread main_worker(work);
+        while (rows_done.load() < map.height) {
+            progress(double(rows_done.load()) / map.height, "solid bake");
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        main_worker.join();
+        progress(1.0, "solid bake");
+    } else {
+        work();
+    }
+    for (auto& worker : pool) worker.join();
+
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    OIIO::ImageSpec spec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT);
+    spec.alpha_channel = 3;
+    spec.attribute("oiio:ColorSpace", "Linear");
+    spec.attribute("compression", "zip");
+    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
+    const std::string temporary = path + ".tmp";
+    if (!output->open(temporary, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, out.data()) || !output->close()) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw Error(path + ": cannot write the solid map: " + output->geterror());
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) throw Error(path + ": cannot move the finished bake into place: " + error.message());
+    return {1, 0, 0};
+}
+
+}  // namespace stochtex

@@ -1,0 +1,138 @@
+"""Unit tests of the add-on's CLI layer (addon/stochtex/stex_cli.py), without Blender.
+
+Run by CTest (AddonCliLayer) with the system Python: STOCHTEX_STEX names the built stex and
+STOCHTEX_EXEMPLAR a photo. The module is loaded from its file: the add-on package's __init__
+imports bpy, which only exists inside Blender.
+"""
+
+import importlib.util
+import json
+import os
+import shutil
+import tempfile
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.join(HERE, "..", "..", "addon", "stochtex", "stex_cli.py")
+spec = importlib.util.spec_from_file_location("stex_cli", SOURCE)
+stex_cli = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(stex_cli)
+
+STEX = os.environ.get("STOCHTEX_STEX", "")
+PHOTO = os.environ.get("STOCHTEX_EXEMPLAR", os.path.join(HERE, "..", "..", "data", "exemplars", "concrete_512.png"))
+
+
+@unittest.skipUnless(STEX, "STOCHTEX_STEX not set (CTest sets it to the built stex)")
+class StexCliTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="stochtex-addon-test-")
+        cls.stex = stex_cli.find_stex()
+        cls.texture = os.path.join(cls.dir, "t.stex")
+        stex_cli.run(cls.stex, stex_cli.analyze_args(PHOTO, cls.texture, histogram="on", seed=3, unit_size_m=0.5))
+        with open(cls.texture) as f:
+            cls.text = f.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_analysis_options_reach_the_file(self):
+        data = stex_cli.parse_stex(self.text)
+        self.assertEqual(data["seed"], 3)
+        self.assertEqual(data["scale"]["unit_size_m"], 0.5)
+        self.assertEqual(stex_cli.band_count(data), 8)
+        self.assertTrue(all(h is not None for h in data["histograms"]))
+
+    def test_bake_reports_progress_and_writes_a_mip_mapped_exr(self):
+        out = os.path.join(self.dir, "bake.exr")
+        job = stex_cli.StexJob(self.stex, stex_cli.bake_args(self.texture, out, 512))
+        while job.poll() is None:
+            time.sleep(0.01)
+        self.assertEqual(job.fraction, 1.0)
+        self.assertEqual(job.stage, "bake")
+        self.assertTrue(os.path.isfile(out))
+        self.assertFalse(os.path.exists(out + ".tmp"))
+
+    def test_errors_are_stex_messages(self):
+        not_image = os.path.join(self.dir, "notes.png")
+        with open(not_image, "w") as f:
+            f.write("text")
+        with self.assertRaises(stex_cli.StexError) as caught:
+            stex_cli.run(self.stex, stex_cli.analyze_args(not_image, os.path.join(self.dir, "x.stex")))
+        self.assertIn("notes.png", str(caught.exception))
+        self.assertNotIn("stex: error:", str(caught.exception))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.stex")))
+
+    def test_cancel_kills_the_bake_and_leaves_no_map(self):
+        out = os.path.join(self.dir, "big.exr")
+        job = stex_cli.StexJob(self.stex, stex_cli.bake_args(self.texture, out, 8192))
+        time.sleep(0.3)
+        self.assertIsNone(job.poll())
+        job.cancel()
+        self.assertFalse(os.path.exists(out))
+
+    def test_tweaks_give_a_valid_texture(self):
+        tweaked = stex_cli.apply_tweaks(self.text, seed=9, band_gains=[0.0, 2.0], histograms=False)
+        data = json.loads(tweaked)
+        original = json.loads(self.text)
+        self.assertEqual(data["seed"], 9)
+        self.assertEqual(data["histograms"], [None, None, None])
+        for c in range(3):
+            self.assertEqual(data["parameters"]["band_weights"][c][0], 0.0)
+            self.assertAlmostEqual(data["parameters"]["band_weights"][c][1], 2 * original["parameters"]["band_weights"][c][1])
+            self.assertEqual(data["parameters"]["band_weights"][c][2:], original["parameters"]["band_weights"][c][2:])
+        path = os.path.join(self.dir, "tweaked.stex")
+        with open(path, "w") as f:
+            f.write(tweaked)
+        stex_cli.run(self.stex, ["info", path])  # stex's strict reader accepts it
+
+    def test_morph_and_osl_arguments_run(self):
+        morphed = os.path.join(self.dir, "m.stex")
+        stex_cli.run(self.stex, stex_cli.morph_args(self.texture, self.texture, 0.5, morphed))
+        shader = os.path.join(self.dir, "t.osl")
+        stex_cli.run(self.stex, stex_cli.osl_args(morphed, shader))
+        with open(shader) as f:
+            self.assertIn("shader stochtex_t(", f.read())
+
+
+class PureTest(unittest.TestCase):
+    def test_not_stex(self):
+        with self.assertRaises(stex_cli.StexError):
+            stex_cli.parse_stex("{\"format\": \"png\"}")
+        with self.assertRaises(stex_cli.StexError):
+            stex_cli.parse_stex("{")
+
+    def test_missing_executable_is_a_clear_error(self):
+        with self.assertRaises(stex_cli.StexError) as caught:
+            stex_cli.find_stex("/nonexistent/stex")
+        self.assertIn("/nonexistent/stex", str(caught.exception))
+
+    def test_error_message_prefers_stex_line(self):
+        self.assertEqual(stex_cli.error_message(["warning", "stex: error: t.stex: bad"], 1), "t.stex: bad")
+        self.assertIn("signal 9", stex_cli.error_message([], -9))
+
+    def test_manifest_and_bl_info_agree(self):
+        # One zip installs as a legacy add-on (bl_info) and as a 4.2+ extension (manifest).
+        import ast
+        import tomllib
+        folder = os.path.dirname(SOURCE)
+        with open(os.path.join(folder, "blender_manifest.toml"), "rb") as f:
+            manifest = tomllib.load(f)
+        with open(os.path.join(folder, "__init__.py")) as f:
+            tree = ast.parse(f.read())
+        bl_info = next(ast.literal_eval(node.value) for node in tree.body
+                       if isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "bl_info")
+        self.assertEqual(manifest["version"], ".".join(map(str, bl_info["version"])))
+        self.assertEqual(manifest["type"], "add-on")
+        self.assertLessEqual(len(manifest["tagline"]), 64)
+        for key in ("schema_version", "id", "name", "maintainer", "blender_version_min", "license"):
+            self.assertIn(key, manifest)
+
+    def test_period(self):
+        self.assertEqual(stex_cli.period_units({"scale": {"pixels_per_unit": 512}}, 1024), 2.0)
+
+
+if __name__ == "__main__":
+    unittest.main()
