@@ -1,0 +1,290 @@
+// stochtex — random-phase Gabor noise: evaluation speed, with its references in the same run.
+//
+//   Noise/...        one noise (one octave, one channel, 16 impulses per kernel) evaluated on a
+//                    512×512 grid: 2D filtered, solid unfiltered, solid sliced by a tilted plane
+//                    and filtered; anisotropic and isotropic; 1 and 2 threads. "Meval/s".
+//   Ref/PlainSum...  the same kernel sum over the same impulses, written plainly (double
+//                    precision, std::exp/std::cos, no culling of cells): what the fast path is for
+//   Ref/Perlin3D     libnoise 3D Perlin, one octave (only with libnoise-dev)
+//   Texture/...      512² renders of the gabor and the wavelet texture analysed from one photo
+//                    (2D and solid, filtered at the photo's scale), "Mpix/s"
+//
+// Run: build/bench/gabor_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// A comparison of the medians (x = speed relative to the plain sum and to Perlin) follows the table.
+#include "gabor_noise.h"
+
+#include <stochtex/analysis.h>
+#include <stochtex/image.h>
+#include <stochtex/render.h>
+#include <stochtex/texture.h>
+
+#include <benchmark/benchmark.h>
+
+#ifdef STOCHTEX_HAVE_LIBNOISE
+#include <libnoise/noise.h>
+#endif
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using namespace stochtex;
+
+constexpr int grid = 512;  // evaluations per benchmark iteration: grid²
+constexpr double impulses = 16;
+
+GaborNoiseParameters noise_parameters(GaborKind kind)
+{
+    GaborNoiseParameters p;
+    p.kind = kind;
+    p.frequency = 0.125;  // 8 grid steps per wavelength
+    p.bandwidth = 0.125;
+    p.direction = {0.6, 0.8, 0};
+    p.impulses_per_kernel = impulses;
+    p.channels = 1;
+    return p;
+}
+
+/// Rows [0, grid) split over `threads` workers; body(y) evaluates one row and returns a checksum.
+template <class Row>
+double for_rows(int threads, const Row& body)
+{
+    std::vector<double> sums(std::size_t(threads), 0.0);
+    std::vector<std::thread> workers;
+    for (int t = 0; t < threads; ++t)
+        workers.emplace_back([&, t] {
+            for (int y = t; y < grid; y += threads) sums[std::size_t(t)] += body(y);
+        });
+    for (auto& worker : workers) worker.join();
+    double total = 0;
+    for (double s : sums) total += s;
+    return total;
+}
+
+void set_rate(benchmark::State& state, const char* counter, double per_iteration)
+{
+    state.counters[counter] = benchmark::Counter(double(state.iterations()) * per_iteration / 1e6, benchmark::Counter::kIsRate);
+}
+
+enum class Mode { flat_filtered, solid, sliced_filtered };
+
+void bm_noise(benchmark::State& state, GaborKind kind, Mode mode, int threads)
+{
+    const GaborNoise noise(noise_parameters(kind));
+    // A pixel footprint of one grid step (σ = ½ step), and a plane tilted off every axis.
+    const GaborFilter pixel(noise.parameters().bandwidth, filter_covariance(1, 0, 0, 1, 1));
+    const TangentFrame tilted = tangent_frame({0.48, -0.64, 0.6}, {0.8, 0.6, 0});
+    for (auto _ : state) {
+        const double sum = for_rows(threads, [&](int y) {
+            double row = 0;
+            float value[GaborNoise::max_channels];
+            for (int x = 0; x < grid; ++x) {
+                switch (mode) {
+                case Mode::flat_filtered: noise.eval_2d(x + 0.5, y + 0.5, pixel, value); break;
+                case Mode::solid: noise.eval_sliced({x + 0.5, y + 0.5, 3.25}, TangentFrame{}, GaborFilter(), value); break;
+                case Mode::sliced_filtered: {
+                    Vec3 p{7.0, 3.0, 5.0};
+                    for (int e = 0; e < 3; ++e) p[e] += (x + 0.5) * tilted.t[e] + (y + 0.5) * tilted.b[e];
+                    noise.eval_sliced(p, tilted, pixel, value);
+                    break;
+                }
+                }
+                row += value[0];
+            }
+            return row;
+        });
+        benchmark::DoNotOptimize(sum);
+    }
+    set_rate(state, "Meval/s", double(grid) * grid);
+    state.SetLabel(std::string(to_string(kind)) + ", " + std::to_string(int(impulses)) +
+                   " impulses/kernel, 1 channel, threads=" + std::to_string(threads));
+}
+
+void bm_plain_sum(benchmark::State& state, GaborKind kind, bool solid)
+{
+    const GaborNoise noise(noise_parameters(kind));
+    for (auto _ : state) {
+        double sum = 0;
+        for (int y = 0; y < grid; ++y)
+            for (int x = 0; x < grid; ++x)
+                sum += solid ? noise.reference_3d({x + 0.5, y + 0.5, 3.25}, 0) : noise.reference_2d(x + 0.5, y + 0.5, 0);
+        benchmark::DoNotOptimize(sum);
+    }
+    set_rate(state, "Meval/s", double(grid) * grid);
+    state.SetLabel(std::string(to_string(kind)) + ", same impulses, double, std::exp/std::cos, unfiltered, threads=1");
+}
+
+#ifdef STOCHTEX_HAVE_LIBNOISE
+void bm_perlin(benchmark::State& state)
+{
+    noise::module::Perlin perlin;
+    perlin.SetOctaveCount(1);
+    perlin.SetFrequency(0.125);
+    for (auto _ : state) {
+        double sum = 0;
+        for (int y = 0; y < grid; ++y)
+            for (int x = 0; x < grid; ++x) sum += perlin.GetValue(x + 0.5, y + 0.5, 3.25);
+        benchmark::DoNotOptimize(sum);
+    }
+    set_rate(state, "Meval/s", double(grid) * grid);
+    state.SetLabel("libnoise Perlin 3D, 1 octave, threads=1");
+}
+#endif
+
+// ---- Texture renders ----------------------------------------------------------------------------
+
+Image exemplar()
+{
+    const std::filesystem::path candidates[] = {std::filesystem::path(STOCHTEX_SOURCE_DIR) / "data/exemplars/concrete_512.png"};
+    for (const auto& path : candidates)
+        if (std::filesystem::is_regular_file(path)) return read_image_linear(path.string());
+    throw std::runtime_error("gabor_bench: data/exemplars/concrete_512.png not found");
+}
+
+struct Model {
+    TextureDescription description;
+    std::unique_ptr<Texture> texture;
+};
+
+void bm_render(benchmark::State& state, const Model* model, bool solid, int threads)
+{
+    RenderSettings settings;
+    settings.width = settings.height = grid;
+    settings.units_per_pixel = 1.0 / model->description.pixels_per_unit;
+    settings.origin_u = 0.25, settings.origin_v = 0.5;
+    settings.solid = solid;
+    settings.z = 0.375;
+    settings.threads = threads;
+    for (auto _ : state) {
+        Image image = render(*model->texture, settings);
+        benchmark::DoNotOptimize(image.pixels.data());
+    }
+    set_rate(state, "Mpix/s", double(grid) * grid);
+    const auto& d = model->description;
+    const std::size_t octaves = d.gabor ? d.gabor->frequencies.size() : d.wavelet->band_weights[0].size();
+    state.SetLabel(d.model + (solid ? " solid" : " 2D") + ", " + std::to_string(octaves) + (d.gabor ? " octaves" : " bands") +
+                   ", RGB, filtered, threads=" + std::to_string(threads));
+}
+
+// ---- Comparison of the medians -------------------------------------------------------------------
+
+class ComparingReporter : public benchmark::ConsoleReporter {
+public:
+    using ConsoleReporter::ConsoleReporter;
+
+    void ReportRuns(const std::vector<Run>& reports) override
+    {
+        ConsoleReporter::ReportRuns(reports);
+        for (const Run& run : reports) {
+            if (run.error_occurred || (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median")) continue;
+            for (const char* unit : {"Meval/s", "Mpix/s"}) {
+                const auto counter = run.counters.find(unit);
+                if (counter != run.counters.end()) rates_[run.run_name.str()] = counter->second.value;
+            }
+        }
+    }
+
+    void Finalize() override
+    {
+        ConsoleReporter::Finalize();
+        auto find = [&](const std::string& prefix) -> double {
+            for (const auto& [name, rate] : rates_)
+                if (name.rfind(prefix, 0) == 0) return rate;
+            return 0;
+        };
+        std::printf("\nComparison (medians of this run):\n");
+        for (const auto& [name, rate] : rates_) {
+            std::printf("  %-44s %8.3f", name.c_str(), rate);
+            if (name.rfind("Noise/", 0) == 0) {
+                const bool isotropic = name.find("isotropic") != std::string::npos && name.find("anisotropic") == std::string::npos;
+                const double plain = find(std::string("Ref/PlainSum3D/") + (isotropic ? "isotropic" : "anisotropic"));
+                const double perlin = find("Ref/Perlin3D");
+                if (plain > 0) std::printf("  %6.2fx plain kernel sum (3D)", rate / plain);
+                if (perlin > 0) std::printf("  %6.3fx Perlin", rate / perlin);
+            }
+            if (name.rfind("Texture/gabor", 0) == 0) {
+                const std::string twin = "Texture/wavelet" + name.substr(std::strlen("Texture/gabor"));
+                const double wavelet = find(twin);
+                if (wavelet > 0) std::printf("  %6.3fx wavelet (same raster, threads)", rate / wavelet);
+            }
+            std::printf("\n");
+        }
+        std::fflush(stdout);
+    }
+
+private:
+    std::map<std::string, double> rates_;
+};
+
+bool console_format(int argc, char** argv)
+{
+    for (int i = 1; i < argc; ++i)
+        if (std::strncmp(argv[i], "--benchmark_format=", 19) == 0) return std::strcmp(argv[i] + 19, "console") == 0;
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    const bool console = console_format(argc, argv);
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+
+    static Model gabor, wavelet;
+    try {
+        const Image photo = exemplar();
+        AnalysisOptions options;
+        options.histogram = HistogramMode::automatic;
+        wavelet.description = analyze(photo, options);
+        options.model = "gabor";
+        gabor.description = analyze(photo, options);
+        gabor.texture = make_texture(gabor.description);
+        wavelet.texture = make_texture(wavelet.description);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gabor_bench: setup failed: %s\n", e.what());
+        return 1;
+    }
+
+    for (GaborKind kind : {GaborKind::anisotropic, GaborKind::isotropic}) {
+        const std::string k = to_string(kind);
+        for (int threads : {1, 2}) {
+            const std::string t = "/threads:" + std::to_string(threads);
+            benchmark::RegisterBenchmark(("Noise/2D-filtered/" + k + t).c_str(), bm_noise, kind, Mode::flat_filtered, threads)
+                ->Unit(benchmark::kMillisecond)->UseRealTime();
+            benchmark::RegisterBenchmark(("Noise/solid/" + k + t).c_str(), bm_noise, kind, Mode::solid, threads)
+                ->Unit(benchmark::kMillisecond)->UseRealTime();
+            benchmark::RegisterBenchmark(("Noise/sliced-filtered/" + k + t).c_str(), bm_noise, kind, Mode::sliced_filtered, threads)
+                ->Unit(benchmark::kMillisecond)->UseRealTime();
+        }
+        benchmark::RegisterBenchmark(("Ref/PlainSum2D/" + k).c_str(), bm_plain_sum, kind, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+        benchmark::RegisterBenchmark(("Ref/PlainSum3D/" + k).c_str(), bm_plain_sum, kind, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+    }
+#ifdef STOCHTEX_HAVE_LIBNOISE
+    benchmark::RegisterBenchmark("Ref/Perlin3D", bm_perlin)->Unit(benchmark::kMillisecond)->UseRealTime();
+#endif
+    for (const Model* model : {&gabor, &wavelet})
+        for (bool solid : {false, true})
+            for (int threads : {1, 2})
+                benchmark::RegisterBenchmark(("Texture/" + model->description.model + (solid ? "/solid" : "/2D") +
+                                              "/threads:" + std::to_string(threads)).c_str(),
+                                             bm_render, model, solid, threads)
+                    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+    // The comparison needs the console table; other formats (JSON, CSV) get Google Benchmark's own.
+    ComparingReporter comparing(isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular
+                                                      : benchmark::ConsoleReporter::OO_Tabular);
+    benchmark::RunSpecifiedBenchmarks(console ? &comparing : nullptr);
+    benchmark::Shutdown();
+    return 0;
+}
