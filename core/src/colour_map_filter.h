@@ -1,0 +1,64 @@
+// Filtered lookups in a 2D colour map: Ŝ(μ, Σ) ≈ E[S(N)], N ~ 𝒩(μ, Σ), the colour a pixel shows
+// when the noise pair (N_a, N_b) indexing the map varies inside its footprint with mean μ and
+// covariance Σ (paper 002 §6.2; notes P2.5).
+//
+// S is an RGB map over [0, 1]² (linear light; lookups clamp to the edge, as the noise does).
+// A table of pre-blurred copies holds S blurred by σ_i along a and σ_j along b for every pair
+// of levels (i, j): σ_0 = 0, σ_k = 2^(k−1) map texels, the last level the full average. Coarse
+// levels are stored at lower resolution (two samples per σ), so a 256² map's table takes 12 MB
+// instead of 50.
+//
+// Methods (the ablations of docs/models/tiling.md):
+//   reference   — as in the authors' code: per axis the level round(log2(1 + σ_texels)), one
+//                 bilinear fetch, the a–b covariance ignored;
+//   interpolated — the fractional level 1 + log2 σ (σ in texels; σ itself below 1 texel)
+//                 on each axis, blended linearly between the neighbouring levels (4 fetches);
+//   covariance  — interpolated, plus the covariance: Σ = diag(d) + u uᵀ with u along the
+//                 correlation (the largest axis-aligned part d that leaves a rank-one rest), the
+//                 diag(d) blur from the table and the rank-one part by Gauss–Hermite quadrature
+//                 along u. Exact for any S whenever the table's blurs are.
+#pragma once
+
+#include <stochtex/texture.h>
+
+#include <array>
+#include <vector>
+
+namespace stochtex {
+
+enum class ColourMapMethod { reference, interpolated, covariance };
+const char* to_string(ColourMapMethod method);
+
+/// Second moments of the noise pair: var_a, cov_ab, var_b (noise units: the map spans [0, 1]).
+struct PairCovariance {
+    double aa = 0, ab = 0, bb = 0;
+};
+
+class ColourMapFilter {
+public:
+    /// rgb: size × size texels (x: noise a, y: noise b), linear RGB; size a power of two ≥ 8.
+    ColourMapFilter(const std::vector<float>& rgb, int size);
+
+    int size() const { return size_; }
+    /// S at (a, b): bilinear, clamped to the map.
+    Rgb point(double a, double b) const { return fetch(0, 0, a, b); }
+    Rgb filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
+    /// E[S(N)] by brute-force quadrature over the unblurred map (a test oracle; slow).
+    Rgb expected(double mean_a, double mean_b, const PairCovariance& covariance) const;
+
+private:
+    struct Blurred {
+        int width = 0, height = 0;  // texels along a and b
+        std::vector<float> rgb;
+    };
+    Rgb fetch(int level_a, int level_b, double a, double b) const;
+    /// Linear blend of the four (floor, ceil) level pairs around fractional levels.
+    Rgb fetch_fractional(double level_a, double level_b, double a, double b) const;
+    double fractional_level(double sigma) const;
+
+    int size_;
+    int levels_;  // blur levels per axis, the last one the average
+    std::vector<Blurred> table_;  // [level_a · levels_ + level_b]
+};
+
+}  // namespace stochtex

@@ -1,0 +1,54 @@
+// The triangle grid of tiling and blending (paper 002 §1; Deliot–Heitz 2019, notes P2.1).
+//
+// The plane is covered by hexagonal tiles centred on the vertices of a grid of equilateral
+// triangles. A point lies in one triangle; its three vertices' tiles overlap there and are
+// blended with the weights w = B / ‖B‖₂ (B the barycentric coordinates), so Σ w_i² = 1 and the
+// blend of three uncorrelated tiles keeps the exemplar's variance everywhere (eq. 1). Each
+// vertex draws a random offset into the exemplar from a hash of its lattice index.
+//
+// Units: exemplar pixels. A tile's content is addressed relative to its vertex,
+// exemplar(p − centre + offset) (tiling_noise.h rounds the shift to whole pixels): then a
+// periodic lattice (below) makes the whole texture periodic, whatever the exemplar's size, since
+// vertices one period apart share their offset (and know the periods between them).
+//
+// Periodic form: the lattice is stretched (per axis, the least possible) so that the period
+// holds a whole number n of cells along x and m of the lattice's vertical repeats (√3 edges,
+// two rows) along y; vertex (i, j) is then identified with (i + n, j) and (i − m, j + 2m).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace stochtex {
+
+struct TileVertex {
+    double weight;                 ///< w_i: Σ w_i² = 1 over the three vertices
+    std::array<double, 2> centre;  ///< the vertex, exemplar pixels
+    std::array<double, 2> offset;  ///< random, in [0, 1)² exemplar widths and heights
+    /// Whole periods between this vertex and its representative in the periodic lattice (the
+    /// vertex that drew the offset; 0 when not periodic), exemplar pixels.
+    std::array<double, 2> period_shift;
+};
+using TileBlend = std::array<TileVertex, 3>;
+
+class TilingGrid {
+public:
+    /// edge: the triangles' edge in exemplar pixels.
+    TilingGrid(std::uint32_t seed, double edge);
+    /// Periodic with `period` exemplar pixels per axis (positive, finite).
+    TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period);
+
+    TileBlend blend(double x, double y) const;
+    /// The edges actually used along x and y (differ from `edge` only in the periodic form).
+    const std::array<double, 2>& edges() const { return edge_; }
+
+private:
+    /// The offset and the period shift of vertex (i, j).
+    void draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const;
+
+    std::uint32_t seed_;
+    std::array<double, 2> edge_;
+    std::int64_t cells_x_ = 0, repeats_y_ = 0;  // periodic lattice (n, m); 0: not periodic
+};
+
+}  // namespace stochtex
