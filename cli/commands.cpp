@@ -3,10 +3,12 @@
 #include "plot.h"
 #include "progress_bar.h"
 
+#include <stochtex/bake.h>
 #include <stochtex/describe.h>
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
 #include <stochtex/morph.h>
+#include <stochtex/osl/osl_shader.h>
 #include <stochtex/pov/pov_include.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -44,6 +47,21 @@ int AnalyzeCommand::run() const
     options.histogram_knots = knots;
     options.psd = psd_estimator_from_string(psd);
     options.max_bands = bands;
+    options.gabor_kind = gabor_kind_from_string(gabor_kind);
+    options.gabor_impulses = impulses;
+    options.gabor_bandwidth = bandwidth;
+    options.tiling_exemplar_size = exemplar_size;
+    options.tiling_exemplar_bits = exemplar_bits;
+    options.lrp_cosines = lrp_cosines;
+    options.lrp_strata = lrp_strata;
+    options.lrp_structure = lrp_structure;
+    options.lrp_placement = lrp_placement == "on";
+    if (lrp_turbulence != "auto") {
+        char* end = nullptr;
+        options.lrp_turbulence = std::strtod(lrp_turbulence.c_str(), &end);
+        if (end == lrp_turbulence.c_str() || *end || !(options.lrp_turbulence >= 0) || !std::isfinite(options.lrp_turbulence))
+            throw Error("--turbulence: expected auto or a non-negative number of pixels, got '" + lrp_turbulence + "'");
+    }
     options.seed = seed;
     options.unit_size_m = unit_size_m;
     options.source_name = std::filesystem::path(photo).filename().string();
@@ -205,6 +223,60 @@ int PovCommand::run() const
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("wrote %s (%s mode, texture %s, %zu bytes) in %.2f s\n%s\n", output.c_str(), pov::to_string(options.mode),
                 options.name.c_str(), include.text.size(), seconds, include.summary.c_str());
+    return 0;
+}
+
+int BakeCommand::run() const
+{
+    TextureDescription description = read_stex(texture);
+    if (seed >= 0) {
+        if (seed > 0xffffffffll) throw Error("--seed: must fit in 32 bits");
+        description.seed = std::uint32_t(seed);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (!positions.empty()) {
+        bake_solid_map(description, positions, output, position_scale, threads, terminal_progress_bar());
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::printf("wrote %s (the solid texture at the positions of %s) in %.2f s\n", output.c_str(), positions.c_str(),
+                    seconds);
+        return 0;
+    }
+    BakeOptions options;
+    options.width = options.height = size;
+    options.scale = scale;
+    options.tile_size = tile;
+    options.half = half;
+    options.threads = threads;
+    const BakeSummary summary = bake_mip_image(description, output, options, terminal_progress_bar());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("wrote %s (%dx%d, %d MIP levels, %s, one period: %.6g x %.6g texture units) in %.2f s\n", output.c_str(),
+                size, size, summary.levels, half ? "half" : "float", summary.period_u, summary.period_v, seconds);
+    return 0;
+}
+
+int OslCommand::run() const
+{
+    namespace fs = std::filesystem;
+    osl::OslShaderOptions options;
+    options.shader_name = name.empty() ? osl::osl_shader_name_from_path(output) : name;
+    const TextureDescription description = read_stex(texture);
+    options.source_name = fs::path(texture).filename().string();
+    // The tiles go beside the shader; the shader names them by absolute path unless --tile-dir
+    // says where the renderer will find them.
+    const fs::path folder = fs::absolute(fs::path(output)).parent_path();
+    const fs::path tile_2d = folder / "stochtex_noise_2d.exr", tile_3d = folder / "stochtex_noise_3d.exr";
+    const fs::path shown = tile_dir.empty() ? folder : fs::path(tile_dir);
+    options.tile_2d_path = (shown / tile_2d.filename()).string();
+    options.tile_3d_path = (shown / tile_3d.filename()).string();
+    const std::string text = osl::make_osl_shader(description, options);
+    osl::write_noise_tiles(tile_2d.string(), tile_3d.string());
+    {
+        std::ofstream out(output, std::ios::binary);
+        out << text;
+        if (!out) throw Error(output + ": cannot write the OSL shader");
+    }
+    std::printf("wrote %s (shader %s, %zu bytes) and its noise tiles %s, %s\n", output.c_str(),
+                options.shader_name.c_str(), text.size(), tile_2d.c_str(), tile_3d.c_str());
     return 0;
 }
 

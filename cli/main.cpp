@@ -1,5 +1,8 @@
 // stex — the stochtex command-line tool. See `stex --help` and README.md.
 #include "commands.h"
+#include "progress_bar.h"
+#include "ptm_commands.h"
+#include "tiling_commands.h"
 
 #include <stochtex/error.h>
 
@@ -16,12 +19,20 @@ int main(int argc, char** argv)
     // such instead of as a missing sub-command.
     app.require_subcommand(0, 1);
     app.set_version_flag("--version", "stochtex " STOCHTEX_VERSION);
+    bool progress_lines = false;
+    app.add_flag("--progress-lines", progress_lines,
+                 "Report progress as lines 'progress FRACTION STAGE' on stderr (for programs running stex)");
 
     AnalyzeCommand analyze;
     auto* a = app.add_subcommand("analyze", "Analyse a texture photo into a .stex procedural texture");
     a->add_option("photo", analyze.photo, "Photo of a stochastic texture (any format OpenImageIO reads)")->required();
     a->add_option("-o,--output", analyze.output, "Output .stex file")->required();
-    a->add_option("--model", analyze.model, "Texture model")->check(CLI::IsMember({"wavelet"}))->capture_default_str();
+    a->add_option("--model", analyze.model,
+                  "Texture model: wavelet (isotropic, 2D and solid) or gabor (random-phase Gabor octaves: solid, sliced "
+                  "and analytically filtered, optionally oriented; docs/models/gabor.md) or tiling (tiling and blending of "
+                  "an exemplar crop stored in the .stex, moment-filtered; docs/models/tiling.md) or lrp (local random-phase "
+                  "noise: any spectrum, anisotropic too, plus structure by fixed phases; docs/models/lrp.md)")
+        ->check(CLI::IsMember({"wavelet", "gabor", "tiling", "lrp"}))->capture_default_str();
     a->add_option("--colour", analyze.colour, "Colour mode: pca (decorrelated), rgb (independent), rgb-shared")
         ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))->capture_default_str();
     a->add_option("--histogram", analyze.histogram,
@@ -30,8 +41,39 @@ int main(int argc, char** argv)
     a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
     a->add_option("--psd", analyze.psd, "Power spectrum estimator: periodic (paper; default, chosen by measurement) or periodic-smooth (Moisan, no edge leak on non-tileable photos)")
         ->check(CLI::IsMember({"periodic-smooth", "periodic"}))->capture_default_str();
-    a->add_option("--bands", analyze.bands, "Keep at most N finest bands (0: all the photo supports)")
+    a->add_option("--gabor-kind", analyze.gabor_kind,
+                  "gabor: isotropic (frequencies on a sphere; solid slices alike in every direction), anisotropic (one "
+                  "orientation, measured from the photo: wood, brushed metal) or hybrid (frequencies in the (u, v) plane)")
+        ->check(CLI::IsMember({"isotropic", "anisotropic", "hybrid"}))->capture_default_str();
+    a->add_option("--impulses", analyze.impulses, "gabor: impulses per kernel (quality vs speed; ~16 looks Gaussian)")
+        ->check(CLI::Range(1.0, 256.0))->capture_default_str();
+    a->add_option("--bandwidth", analyze.bandwidth,
+                  "gabor: kernel bandwidth relative to its frequency, 0.0625 to 16 (0: chosen by the fit)")
+        ->check(CLI::Range(0.0, 16.0))->capture_default_str();
+    a->add_option("--bands", analyze.bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();
+    a->add_option("--exemplar-size", analyze.exemplar_size,
+                  "tiling: largest exemplar side; the exemplar is the photo's centred crop, sides powers of two (16 to 1024)")
+        ->check(CLI::Range(16, 1024))->capture_default_str();
+    a->add_option("--exemplar-bits", analyze.exemplar_bits, "tiling: bits per stored exemplar sample (8 or 16)")
+        ->check(CLI::IsMember({8, 16}))->capture_default_str();
+    a->add_option("--J", analyze.lrp_cosines,
+                  "lrp: cosine budget J per window over all strata and the structure (cost: about 9(J + L) sine/cosine "
+                  "and window evaluations per sample)")
+        ->check(CLI::Range(1, 256))->capture_default_str();
+    a->add_option("--L", analyze.lrp_strata, "lrp: random-phase strata of equal energy (the paper's 4 measured worse than 8)")
+        ->check(CLI::Range(1, 16))->capture_default_str();
+    a->add_option("--r", analyze.lrp_structure,
+                  "lrp: share of the spectrum's energy reproduced with the photo's own phases (structure), 0 to 0.95; "
+                  "0: noise by example only")
+        ->check(CLI::Range(0.0, 0.95))->capture_default_str();
+    a->add_option("--placement", analyze.lrp_placement,
+                  "lrp: random placement of the structure (breaks its periodicity; blocks of half a crop, cross-faded)")
+        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+    a->add_option("--turbulence", analyze.lrp_turbulence,
+                  "lrp: turbulence of the structure, standard deviation of the displacement in photo pixels, or auto "
+                  "(a tenth of the structure's mean wavelength)")
+        ->capture_default_str();
     a->add_option("--seed", analyze.seed, "Seed stored in the texture")->capture_default_str();
     a->add_option("--colourspace,--colorspace", analyze.colour_space,
                   "Colour space of the photo's values (default: what the file says, else sRGB)");
@@ -73,6 +115,30 @@ int main(int argc, char** argv)
     m->add_option("--t", morph.t, "Interpolation parameter in [0, 1]")->check(CLI::Range(0.0, 1.0))->capture_default_str();
     m->add_option("-o,--output", morph.output, "Output .stex file")->required();
 
+    BakeCommand bake;
+    auto* b = app.add_subcommand("bake", "Bake a texture into a tiled, MIP-mapped EXR: one seamless period, each level filtered by the model");
+    b->add_option("texture", bake.texture, ".stex file")->required();
+    b->add_option("-o,--output", bake.output, "Output image (.exr)")->required();
+    b->add_option("--size", bake.size, "Level-0 texels per side")->check(CLI::Range(8, 32768))->capture_default_str();
+    b->add_option("--scale", bake.scale, "Exemplar pixels per texel (1: the photo's pixel scale)")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    b->add_option("--tile", bake.tile, "Tile size (a power of two, 8 to 4096)")->capture_default_str();
+    b->add_flag("--half", bake.half, "Store 16-bit half floats instead of 32-bit floats");
+    b->add_option("--threads", bake.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    b->add_option("--seed", bake.seed, "Override the texture's seed")->check(CLI::NonNegativeNumber);
+    b->add_option("--positions", bake.positions,
+                  "Instead: the solid texture at the texels of this position map (RGBA float: xyz, alpha = covered), "
+                  "e.g. a UV atlas of object coordinates baked by Blender");
+    b->add_option("--position-scale", bake.position_scale, "With --positions: texture units per position unit")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+
+    OslCommand osl;
+    auto* o = app.add_subcommand("osl", "Write an OSL shader with the texture's parameters built in (and the noise tiles it reads)");
+    o->add_option("texture", osl.texture, ".stex file")->required();
+    o->add_option("-o,--output", osl.output, "Output shader (.osl); stochtex_noise_2d.exr and _3d.exr are written beside it")->required();
+    o->add_option("--name", osl.name, "Shader name (default: stochtex_ + the output file's name)");
+    o->add_option("--tile-dir", osl.tile_dir, "Folder the shader names for the noise tiles (default: the output's folder, absolute)");
+
     PovCommand pov;
     auto* p = app.add_subcommand("pov", "Write a POV-Ray 3.7 include: the texture as SDL (procedural) or a baked tileable EXR");
     p->add_option("texture", pov.texture, ".stex file")->required();
@@ -84,13 +150,17 @@ int main(int argc, char** argv)
     p->add_option("--bake-size", pov.bake_size, "Baked mode: texels per side, 16 to 8192 (0: one texture unit at the photo's pixel scale, at most 2048)")
         ->check(CLI::Range(0, 8192))->capture_default_str();
 
+    const PtmCommands ptm(app);
+    const TilingCommands tiling(app);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
+    set_progress_lines(progress_lines);
     if (app.get_subcommands().empty()) {
-        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, pov); see stex --help\n");
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, ptm, tiling); see stex --help\n");
         return 1;
     }
     try {
@@ -100,6 +170,10 @@ int main(int argc, char** argv)
         if (*c) return compare.run();
         if (*m) return morph.run();
         if (*p) return pov.run();
+        if (*b) return bake.run();
+        if (*o) return osl.run();
+        if (ptm.selected()) return ptm.run();
+        if (tiling.selected()) return tiling.run();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "stex: error: %s\n", e.what());
         return 1;

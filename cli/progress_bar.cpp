@@ -7,8 +7,23 @@
 
 namespace stex_cli {
 
+namespace {
+bool progress_lines = false;
+}
+
+void set_progress_lines(bool enabled) { progress_lines = enabled; }
+
 stochtex::ProgressCallback terminal_progress_bar()
 {
+    if (progress_lines) {
+        return [last = -1](double fraction, const char* stage) mutable {
+            const int percent = int(fraction * 100 + 0.5);
+            if (percent == last) return;
+            last = percent;
+            std::fprintf(stderr, "progress %.2f %s\n", percent / 100.0, stage);
+            std::fflush(stderr);
+        };
+    }
     if (!isatty(STDERR_FILENO)) return {};
     return [last = -1](double fraction, const char* stage) mutable {
         const int percent = int(fraction * 100 + 0.5);

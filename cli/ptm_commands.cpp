@@ -111,7 +111,8 @@ void print_comparison(const Image& truth, const Image& test, bool pixelwise)
 
 struct PtmCommands::Options {
     CLI::App* ptm = nullptr;
-    CLI::App *fit = nullptr, *synthesize = nullptr, *relight = nullptr, *export_maps = nullptr, *relief = nullptr;
+    CLI::App *fit = nullptr, *synthesize = nullptr, *relight = nullptr, *export_maps = nullptr, *relief = nullptr,
+             *unbounded = nullptr;
 
     // fit
     std::string lights, output, colour = "lrgb", light = "0,0,1", colour_space;
@@ -134,12 +135,16 @@ struct PtmCommands::Options {
     int light_count = 40, downsample = 2;
     double min_elevation = 15, azimuth_offset = 0, depth = 24;
     std::string region;
+    // unbounded
+    double triangle_edge = 0.28867513459481287;
+    bool already_periodic = false;
 
     int run_fit() const;
     int run_synthesize() const;
     int run_relight() const;
     int run_export_maps() const;
     int run_relief() const;
+    int run_unbounded() const;
 };
 
 PtmCommands::PtmCommands(CLI::App& app) : options_(std::make_unique<Options>())
@@ -201,6 +206,17 @@ PtmCommands::PtmCommands(CLI::App& app) : options_(std::make_unique<Options>())
     o.export_maps->add_option("--reference-normals", o.reference_normals, "True normal map (same encoding): print angular errors");
     o.export_maps->add_option("--reference-albedo", o.reference_albedo, "True albedo (linear EXR): print relative errors");
 
+    o.unbounded = o.ptm->add_subcommand("unbounded", "Make a ptm .stex unbounded and random-access: its coefficient maps tiled "
+                                                     "and blended (same tiles for all fields), relightable");
+    o.unbounded->add_option("input", o.input, "ptm .stex (fitted, or synthesised --tileable)")->required();
+    o.unbounded->add_option("-o,--output", o.output, "Output ptm .stex (its maps beside it as <name>.ptm.exr)")->required();
+    o.unbounded->add_option("--triangle-edge", o.triangle_edge, "Triangle grid edge in maps widths (tiles ≈ 2× this across)")
+        ->check(CLI::Range(1.0 / 64, 1.0))->capture_default_str();
+    o.unbounded->add_option("--seed", o.seed, "Random seed of the tile offsets")->capture_default_str();
+    o.unbounded->add_flag("--already-periodic", o.already_periodic,
+                          "The maps tile already (ptm synthesize --tileable): keep them as they are instead of taking "
+                          "each channel's periodic component");
+
     o.relief = o.ptm->add_subcommand("relief", "Test data: render a height map under known lights (Lambertian, cast shadows)");
     o.relief->add_option("height_map", o.height_map, "Grey height map (values are data: never colour-converted)")->required();
     o.relief->add_option("-o,--output", o.output, "Output folder: light_NNN.exr, lights.lp, normal.exr, albedo.exr")->required();
@@ -229,7 +245,8 @@ int PtmCommands::run() const
     if (*o.relight) return o.run_relight();
     if (*o.export_maps) return o.run_export_maps();
     if (*o.relief) return o.run_relief();
-    throw Error("ptm: a sub-command is required (fit, synthesize, relight, export-maps, relief)");
+    if (*o.unbounded) return o.run_unbounded();
+    throw Error("ptm: a sub-command is required (fit, synthesize, relight, export-maps, relief, unbounded)");
 }
 
 int PtmCommands::Options::run_fit() const
@@ -386,6 +403,26 @@ int PtmCommands::Options::run_relief() const
     write_image((fs::path(output) / "albedo.exr").string(), crop_periodic(surface.albedo, area[0], area[1], area[2], area[3]));
     std::printf("wrote %zu images of %dx%d texels, lights.lp, normal.exr and albedo.exr to %s in %.2f s\n",
                 set.images.size(), area[2], area[3], output.c_str(), seconds_since(start));
+    return 0;
+}
+
+int PtmCommands::Options::run_unbounded() const
+{
+    const TextureDescription source = read_stex(input);
+    PtmUnboundedOptions options;
+    options.triangle_edge = triangle_edge;
+    options.make_periodic = !already_periodic;
+    options.seed = seed;
+    TextureDescription description = make_unbounded_ptm(source, options);
+    description.provenance.options.push_back({"unbounded", "triangle edge " + std::to_string(triangle_edge) + ", seed " +
+                                                               std::to_string(seed) +
+                                                               (already_periodic ? "" : ", periodic component")});
+    write_stex(output, description);
+    const PtmMaps& maps = *description.ptm->maps;
+    std::printf("wrote %s: %dx%d texels of %s maps%s, tiled and blended over triangles of %.1f texels (seed %u)\n",
+                output.c_str(), maps.width(), maps.height(), to_string(maps.colour),
+                already_periodic ? "" : " (periodic component)", triangle_edge * std::min(maps.width(), maps.height()),
+                unsigned(seed));
     return 0;
 }
 

@@ -9,6 +9,7 @@
 // - Every problem in open() is an errorfmt() naming the file and the field or hint; open-time
 //   configuration hints ("stex:width" …) override the file's "image" block.
 #include <stochtex/error.h>
+#include <stochtex/lighting.h>
 #include <stochtex/mip_image.h>
 #include <stochtex/stex_file.h>
 
@@ -32,7 +33,7 @@ namespace {
 /// The open-time hints this plugin understands. Any other "stex:" hint is an error (a typo
 /// must not silently give the default).
 constexpr const char* known_hints[] = {"stex:width", "stex:height", "stex:tile_width", "stex:tile_height",
-                                       "stex:scale", "stex:channels", "stex:seed"};
+                                       "stex:scale", "stex:channels", "stex:seed", "stex:light"};
 
 /// The whole of `text` as a number (no leading or trailing characters).
 template <class Number>
@@ -120,7 +121,7 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
         if (!Strutil::istarts_with(name, "stex:")) continue;
         if (std::find(std::begin(known_hints), std::end(known_hints), name) == std::end(known_hints)) {
             problem = "unknown open hint \"" + name + "\" (known: stex:width, stex:height, stex:tile_width, "
-                      "stex:tile_height, stex:scale, stex:channels, stex:seed)";
+                      "stex:tile_height, stex:scale, stex:channels, stex:seed, stex:light)";
             return false;
         }
     }
@@ -159,6 +160,24 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
             return false;
         }
         layout.channels = p->get_string();
+    }
+    // The light direction of models that have one (ptm), "x,y,z" or 3 floats: the core sets it
+    // and rejects models without one.
+    if (const ParamValue* p = config.find_attribute("stex:light")) {
+        try {
+            if (p->type() == TypeString) {
+                stochtex::set_light_direction(description, stochtex::parse_light_direction(p->get_string()));
+            } else if (p->type().basetype == TypeDesc::FLOAT && p->type().basevalues() == 3) {
+                const float* v = static_cast<const float*>(p->data());
+                stochtex::set_light_direction(description, {v[0], v[1], v[2]});
+            } else {
+                problem = std::string("stex:light: expected \"x,y,z\" or 3 floats, got a value of type ") + p->type().c_str();
+                return false;
+            }
+        } catch (const std::exception& e) {
+            problem = std::string("stex:light: ") + e.what();
+            return false;
+        }
     }
     return true;
 }
@@ -205,6 +224,10 @@ bool StexInput::open(const std::string& name, ImageSpec& newspec, const ImageSpe
         level0.attribute("stex:model", description.model);
         level0.attribute("stex:seed", int(description.seed));
         level0.attribute("stex:scale", float(layout.scale));
+        if (stochtex::depends_on_light(description)) {
+            const stochtex::Vec3 light = stochtex::light_direction(description);
+            level0.attribute("stex:light", Strutil::fmt::format("{},{},{}", light[0], light[1], light[2]));
+        }
         for (int level = 0; level < image_->level_count(); ++level) {
             ImageSpec spec = level0;
             spec.width = spec.full_width = image_->level_width(level);

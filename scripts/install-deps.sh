@@ -11,7 +11,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libnoise-dev
   povray python3-numpy
 )
-if [ "${1:-}" = "--with-blender" ]; then packages+=(blender); fi
+# Blender scene tests: blender, and xvfb for the tests of the add-on's interactive UI path.
+if [ "${1:-}" = "--with-blender" ]; then packages+=(blender xvfb); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

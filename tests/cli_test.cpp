@@ -352,7 +352,7 @@ TEST_F(Cli, HelpListsSubcommandsAndOptions)
 
     const std::vector<std::pair<std::string, std::vector<std::string>>> options{
         {"analyze", {"photo", "--output", "--model", "--colour", "--histogram", "--knots", "--psd", "--bands",
-                     "--seed", "--colourspace", "--unit-size"}},
+                     "--seed", "--colourspace", "--unit-size", "--gabor-kind", "--impulses", "--bandwidth"}},
         {"render", {"texture", "--output", "--size", "--scale", "--u", "--v", "--solid", "--z", "--no-filter",
                     "--threads", "--seed"}},
         {"info", {"texture"}},

@@ -1,6 +1,7 @@
 // Periodic textures (make_periodic_texture): what the OIIO plugin's wrapping virtual image and
 // the POV-Ray baked maps rely on. Periodicity itself, equality with the plain texture when the
 // period fits every band, statistics when bands have to be snapped or dropped, bad periods.
+#include "region_check.h"
 #include "test_support.h"
 
 #include "random.h"
@@ -147,25 +148,9 @@ TEST(RasterRegion, SeparableRegionPathIsBitIdenticalToPointEvaluation)
     // WaveletTexture::eval_region shares splines along rows and columns; it must still give
     // exactly eval()'s values (tiles of the plugin, renders and single lookups agree).
     const TextureDescription d = committed_texture();
-    const auto plain = make_texture(d);
-    const auto periodic = make_periodic_texture(d, {300 / d.pixels_per_unit, 200 / d.pixels_per_unit});
-    for (const Texture* texture : {plain.get(), periodic.get()})
-        for (double footprint_px : {0.0, 1.0, 3.0, 40.0}) {
-            RasterRegion region;
-            region.origin_u = -0.3, region.origin_v = 0.7;
-            region.du = 1.3 / d.pixels_per_unit, region.dv = 0.9 / d.pixels_per_unit;
-            region.x0 = 17, region.y0 = -5, region.width = 23, region.height = 11;
-            region.footprint = Footprint2D::square(footprint_px / d.pixels_per_unit);
-            std::vector<float> rgb(std::size_t(region.width) * region.height * 3);
-            texture->eval_region(region, rgb.data());
-            for (int y = 0; y < region.height; ++y)
-                for (int x = 0; x < region.width; ++x) {
-                    const Rgb expected = texture->eval({region.u(x), region.v(y)}, region.footprint);
-                    for (int c = 0; c < 3; ++c)
-                        ASSERT_EQ(rgb[(std::size_t(y) * region.width + x) * 3 + c], expected[c])
-                            << "pixel " << x << ", " << y << ", footprint " << footprint_px;
-                }
-        }
+    test::expect_region_matches_points(*make_texture(d), d.pixels_per_unit);
+    test::expect_region_matches_points(*make_periodic_texture(d, {300 / d.pixels_per_unit, 200 / d.pixels_per_unit}),
+                                       d.pixels_per_unit);
 }
 
 }  // namespace

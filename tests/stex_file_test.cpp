@@ -343,8 +343,8 @@ TEST(StexFileErrors, NumbersOverflowingToInfinity)
 
 TEST(StexFileErrors, ModelsAndTheirParameters)
 {
-    EXPECT_EQ(parse_error(edited([](Json& j) { j["model"] = "gabor"; })),
-              "t.stex: model: unknown model 'gabor' (known models: wavelet)");
+    EXPECT_EQ(parse_error(edited([](Json& j) { j["model"] = "perlin"; })),
+              "t.stex: model: unknown model 'perlin' (known models: wavelet, gabor, tiling, lrp, ptm)");
     EXPECT_EQ(parse_error(edited([](Json& j) { j["parameters"] = {{"orientation", 1}}; })),
               "t.stex: parameters.orientation: unknown field (expected one of: band_weights)");
     EXPECT_EQ(parse_error(edited([](Json& j) { j["parameters"] = Json::object(); })),
@@ -463,8 +463,8 @@ TEST(StexValidate, ScaleMeanModelVersionAndProvenance)
     EXPECT_EQ(validate_error(d), "t.stex: colour.mean[1]: expected a finite number within float range, got nan");
 
     d = sample();
-    d.model = "tiling";
-    EXPECT_EQ(validate_error(d), "t.stex: model: unknown model 'tiling' (known models: wavelet)");
+    d.model = "fractal";
+    EXPECT_EQ(validate_error(d), "t.stex: model: unknown model 'fractal' (known models: wavelet, gabor, tiling, lrp, ptm)");
 
     d = sample();
     d.version = 0;
@@ -492,7 +492,7 @@ TEST(TextureDescription, ColourModeNames)
 
 TEST(TextureDescription, KnownModels)
 {
-    EXPECT_EQ(stochtex::known_models(), std::vector<std::string>{"wavelet"});
+    EXPECT_EQ(stochtex::known_models(), (std::vector<std::string>{"wavelet", "gabor", "tiling", "lrp", "ptm"}));
 }
 
 // ---- The optional "image" block (the OIIO plugin's virtual image) --------------------------------

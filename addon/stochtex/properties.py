@@ -44,7 +44,9 @@ class StochtexSettings(bpy.types.PropertyGroup):
     model: EnumProperty(name="Model", default="wavelet", items=[
         ("wavelet", "Wavelet noise", "Isotropic stochastic textures (concrete, sand, rust, gravel from afar)"),
         ("gabor", "Gabor noise", "Random-phase Gabor octaves, optionally oriented (docs/models/gabor.md); "
-         "baked and solid routes")])
+         "baked and solid routes"),
+        ("lrp", "Local random-phase noise", "Any spectrum, anisotropic too, with a little of the photo's own structure "
+         "(docs/models/lrp.md); baked route (its solid map is the 2D texture projected along w)")])
     histogram: EnumProperty(name="Histogram", default="auto", items=[
         ("auto", "Auto", "Match each channel's histogram where it measurably helps"),
         ("on", "On", "Always match the photo's histograms"),

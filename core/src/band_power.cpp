@@ -28,34 +28,9 @@ std::vector<double> band_powers(const std::vector<float>& plane, int width, int 
                                 PsdEstimator estimator)
 {
     const int half_width = width / 2 + 1;
-    std::vector<std::complex<float>> spectrum = real_fft_2d(plane, width, height);
-
-    if (estimator == PsdEstimator::periodic_smooth) {
-        // Moisan (2011): u = p + s, s smooth, p periodic. The boundary image v holds the jumps
-        // across the image's edges; s solves the discrete periodic Poisson equation Δs = v, so
-        // ŝ = v̂ / (2cos(2πk/W) + 2cos(2πl/H) − 4) and p̂ = û − ŝ has no edge "+".
-        std::vector<float> boundary(plane.size(), 0.0f);
-        auto at = [&](int x, int y) { return plane[std::size_t(y) * width + x]; };
-        for (int x = 0; x < width; ++x) {
-            const float jump = at(x, height - 1) - at(x, 0);
-            boundary[x] += jump;
-            boundary[std::size_t(height - 1) * width + x] -= jump;
-        }
-        for (int y = 0; y < height; ++y) {
-            const float jump = at(width - 1, y) - at(0, y);
-            boundary[std::size_t(y) * width] += jump;
-            boundary[std::size_t(y) * width + width - 1] -= jump;
-        }
-        const std::vector<std::complex<float>> boundary_spectrum = real_fft_2d(boundary, width, height);
-        for (int ky = 0; ky < height; ++ky)
-            for (int kx = 0; kx < half_width; ++kx) {
-                if (kx == 0 && ky == 0) continue;
-                const double denominator =
-                    2 * std::cos(2 * M_PI * kx / width) + 2 * std::cos(2 * M_PI * ky / height) - 4;
-                const std::size_t i = std::size_t(ky) * half_width + kx;
-                spectrum[i] -= boundary_spectrum[i] / float(denominator);
-            }
-    }
+    const std::vector<std::complex<float>> spectrum = estimator == PsdEstimator::periodic_smooth
+                                                          ? periodic_component_fft_2d(plane, width, height)
+                                                          : real_fft_2d(plane, width, height);
 
     std::vector<double> power(band_count, 0.0);
     if (band_count == 0) return power;

@@ -2,6 +2,7 @@
 
 #include <stochtex/error.h>
 
+#include "gabor_texture.h"
 #include "histogram_map.h"
 #include "wavelet_texture.h"
 
@@ -15,6 +16,7 @@ double channel_sigma(const TextureDescription& description, int channel)
     if (channel < 0 || channel > 2) throw Error("channel_sigma: channel " + std::to_string(channel) + " is not 0, 1 or 2");
     if (description.model == "wavelet" && description.wavelet)
         return wavelet_channel_sigma(description.wavelet->band_weights[channel]);
+    if (description.model == "gabor" && description.gabor) return gabor_channel_sigma(description.gabor->weights[channel]);
     throw Error("channel_sigma: model '" + description.model + "' has no Gaussian channels");
 }
 

@@ -1,6 +1,11 @@
 #include <stochtex/describe.h>
 #include <stochtex/texture.h>
 
+#include "gabor_noise.h"
+#include "gabor_texture.h"
+#include "lrp_texture.h"
+#include "ptm_texture.h"
+#include "tiling_texture.h"
 #include "wavelet_noise.h"
 #include "wavelet_texture.h"
 
@@ -55,6 +60,29 @@ std::string describe(const TextureDescription& d)
         for (int c = 0; c < 3; ++c)
             out << "sigma_M[" << c << "]   " << format("%.5f", wavelet_channel_sigma(w[c])) << "\n";
     }
+    if (d.gabor) {
+        const GaborParameters& g = *d.gabor;
+        out << "gabor        " << to_string(g.kind);
+        if (g.kind != GaborKind::isotropic)
+            out << format(g.kind == GaborKind::anisotropic ? ", frequency direction (%.3f, %.3f, %.3f)"
+                                                           : ", frequency plane normal (%.3f, %.3f, %.3f)",
+                          g.direction[0], g.direction[1], g.direction[2]);
+        out << "; bandwidth a/F " << format("%.3g", g.bandwidth) << ", " << format("%.3g", g.impulses_per_kernel)
+            << " impulses per kernel\n";
+        out << "octave  cycles/px  wavelength px  kernel radius px     w[0]      w[1]      w[2]\n";
+        for (std::size_t k = 0; k < g.frequencies.size(); ++k) {
+            const double f = g.frequencies[k];
+            out << format("%6.0f  %9.5f  %13.1f", double(k), f, 1 / f)
+                << format("  %16.1f", GaborNoise::support_radius(g.bandwidth * f))
+                << format("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]) << "\n";
+        }
+        for (int c = 0; c < 3; ++c)
+            out << "sigma_M[" << c << "]   " << format("%.5f", gabor_channel_sigma(g.weights[c]))
+                << " (octaves have unit variance, 2D and sliced)\n";
+    }
+    if (d.tiling) out << describe_tiling(d);
+    if (d.ptm) out << describe_ptm(d);
+    if (d.lrp) out << describe_lrp(d);
     const Rgb mean = make_texture(d)->mean();
     out << "texture mean " << format("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";
     return out.str();

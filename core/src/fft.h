@@ -11,4 +11,13 @@ namespace stochtex {
 /// (FFTW's planner is not, so planning is serialised inside).
 std::vector<std::complex<float>> real_fft_2d(const std::vector<float>& plane, int width, int height);
 
+/// real_fft_2d of Moisan's periodic component p of the plane (u = p + s, s smooth): the
+/// spectrum of the plane as if it tiled, without the "+" of leakage its edge jumps would add.
+/// The DC bin is the plane's.
+std::vector<std::complex<float>> periodic_component_fft_2d(const std::vector<float>& plane, int width, int height);
+
+/// Unnormalised inverse of real_fft_2d: the real width×height plane whose DFT has this half
+/// spectrum, times width·height.
+std::vector<float> real_inverse_fft_2d(const std::vector<std::complex<float>>& half_spectrum, int width, int height);
+
 }  // namespace stochtex

@@ -212,6 +212,12 @@ std::string Field::string() const
     return value_->get<std::string>();
 }
 
+bool Field::boolean() const
+{
+    expect(value_->is_boolean(), "true or false");
+    return value_->get<bool>();
+}
+
 double Field::number() const
 {
     expect(value_->is_number(), "a number");

@@ -58,6 +58,7 @@ public:
 
     bool is_null() const { return value_->is_null(); }
     std::string string() const;
+    bool boolean() const;
     double number() const;
     /// An integer token (no fraction or exponent) in [min, max].
     std::int64_t integer(std::int64_t min, std::int64_t max) const;

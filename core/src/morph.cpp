@@ -2,8 +2,9 @@
 #include <stochtex/morph.h>
 #include <stochtex/stex_file.h>
 
+#include <stochtex/channel_map.h>
+
 #include "histogram_map.h"
-#include "wavelet_texture.h"
 
 #include <Eigen/Geometry>
 
@@ -37,6 +38,40 @@ std::vector<double> map_values_at(const HistogramMap& map, double sigma, const s
     return values;
 }
 
+/// Gabor octaves: k-th octave to k-th octave, frequencies and bandwidth geometrically (a morph
+/// between 0.1 and 0.4 cycles per pixel passes through 0.2), weights linearly, the direction by
+/// normalised lerp after aligning signs (ω and −ω describe the same random-phase noise).
+GaborParameters morph_gabor(const GaborParameters& a, const GaborParameters& b, double t)
+{
+    if (a.kind != b.kind)
+        throw Error(std::string("morph: Gabor kinds differ (") + to_string(a.kind) + " vs " + to_string(b.kind) + ")");
+    GaborParameters result = a;
+    result.bandwidth = std::exp(lerp(std::log(a.bandwidth), std::log(b.bandwidth), t));
+    result.impulses_per_kernel = lerp(a.impulses_per_kernel, b.impulses_per_kernel, t);
+    const double sign = a.direction[0] * b.direction[0] + a.direction[1] * b.direction[1] + a.direction[2] * b.direction[2] < 0 ? -1 : 1;
+    double length = 0;
+    for (int i = 0; i < 3; ++i) {
+        result.direction[i] = lerp(a.direction[i], sign * b.direction[i], t);
+        length += result.direction[i] * result.direction[i];
+    }
+    for (double& d : result.direction) d /= std::sqrt(length);
+    // A missing octave has weight 0 at the other texture's frequency.
+    const std::size_t count = std::max(a.frequencies.size(), b.frequencies.size());
+    result.frequencies.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const double fa = k < a.frequencies.size() ? a.frequencies[k] : b.frequencies[k];
+        const double fb = k < b.frequencies.size() ? b.frequencies[k] : a.frequencies[k];
+        result.frequencies[k] = std::exp(lerp(std::log(fa), std::log(fb), t));
+    }
+    for (int c = 0; c < 3; ++c) {
+        result.weights[c].assign(count, 0.0);
+        for (std::size_t k = 0; k < count; ++k)
+            result.weights[c][k] = lerp(k < a.weights[c].size() ? a.weights[c][k] : 0.0,
+                                        k < b.weights[c].size() ? b.weights[c][k] : 0.0, t);
+    }
+    return result;
+}
+
 }  // namespace
 
 TextureDescription morph(const TextureDescription& a, const TextureDescription& b, double t)
@@ -44,9 +79,13 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
     if (!(t >= 0 && t <= 1)) throw Error("morph: t must be in [0, 1], got " + std::to_string(t));
     if (a.model != b.model)
         throw Error("morph: cannot morph a '" + a.model + "' texture into a '" + b.model + "' texture");
+    // Blending two exemplars image-wise would not give a texture "between" them.
+    if (a.tiling) throw Error("morph: tiling textures are exemplar images and cannot be morphed");
     if (a.colour_mode != b.colour_mode)
         throw Error(std::string("morph: colour modes differ (") + to_string(a.colour_mode) + " vs " +
                     to_string(b.colour_mode) + ")");
+    // An lrp texture's frequency tables and fixed-phase blocks have no meaningful interpolation.
+    if (a.model == "lrp") throw Error("morph: lrp textures cannot be morphed (their frequency tables do not interpolate)");
     if (t == 0) return a;
     if (t == 1) return b;
 
@@ -94,19 +133,20 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
             for (std::size_t j = 0; j < count; ++j)
                 w[j] = lerp(j < wa[c].size() ? wa[c][j] : 0.0, j < wb[c].size() ? wb[c][j] : 0.0, t);
         }
-        for (int c = 0; c < 3; ++c) {
-            const HistogramMap& ha = a.histograms[c];
-            const HistogramMap& hb = aligned.histograms[c];
-            if (!ha.enabled() && !hb.enabled()) continue;
-            // Interpolate the two maps on one set of knots (a's, else b's).
-            const std::vector<double>& z = ha.enabled() ? ha.z : hb.z;
-            const std::vector<double> va = map_values_at(ha, wavelet_channel_sigma(wa[c]), z);
-            const std::vector<double> vb = map_values_at(hb, wavelet_channel_sigma(wb[c]), z);
-            HistogramMap& map = result.histograms[c];
-            map.z = z;
-            map.value.resize(z.size());
-            for (std::size_t k = 0; k < z.size(); ++k) map.value[k] = lerp(va[k], vb[k], t);
-        }
+    }
+    if (a.gabor) result.gabor = morph_gabor(*a.gabor, *aligned.gabor, t);
+    for (int c = 0; c < 3; ++c) {
+        const HistogramMap& ha = a.histograms[c];
+        const HistogramMap& hb = aligned.histograms[c];
+        if (!ha.enabled() && !hb.enabled()) continue;
+        // Interpolate the two maps on one set of knots (a's, else b's).
+        const std::vector<double>& z = ha.enabled() ? ha.z : hb.z;
+        const std::vector<double> va = map_values_at(ha, channel_sigma(a, c), z);
+        const std::vector<double> vb = map_values_at(hb, channel_sigma(aligned, c), z);
+        HistogramMap& map = result.histograms[c];
+        map.z = z;
+        map.value.resize(z.size());
+        for (std::size_t k = 0; k < z.size(); ++k) map.value[k] = lerp(va[k], vb[k], t);
     }
 
     std::ostringstream source;

@@ -27,7 +27,7 @@ bool is_bare_file_name(const std::string& name)
 
 PtmParameters read_ptm_parameters(const json_fields::Field& parameters, const std::string& stex_path)
 {
-    parameters.expect_keys({"colour", "light", "coefficients"});
+    parameters.expect_keys({"colour", "light", "coefficients"}, {"unbounded"});
     PtmParameters ptm;
     const json_fields::Field colour = parameters["colour"];
     try {
@@ -56,6 +56,12 @@ PtmParameters read_ptm_parameters(const json_fields::Field& parameters, const st
         coefficients["checksum"].fail("\"" + checksum + "\" does not match '" + ptm.coefficient_file + "' (" + actual +
                                       "): the maps were changed or belong to another .stex");
     ptm.maps = std::move(maps);
+    if (parameters.contains("unbounded")) {
+        const json_fields::Field unbounded = parameters["unbounded"];
+        unbounded.expect_keys({"triangle_edge"});
+        ptm.unbounded = true;
+        ptm.triangle_edge = unbounded["triangle_edge"].number();
+    }
     return ptm;
 }
 
@@ -68,6 +74,7 @@ void write_ptm_parameters(json_fields::Json& parameters, const PtmParameters& pt
     coefficients["width"] = ptm.maps->width();
     coefficients["height"] = ptm.maps->height();
     coefficients["checksum"] = ptm_checksum(*ptm.maps);
+    if (ptm.unbounded) parameters["unbounded"]["triangle_edge"] = ptm.triangle_edge;
 }
 
 void validate_ptm(const TextureDescription& description, const std::string& source)
@@ -85,6 +92,9 @@ void validate_ptm(const TextureDescription& description, const std::string& sour
     if (!(l[2] > 0)) fail("parameters.light", "must point out of the surface (z > 0)");
     if (!ptm.coefficient_file.empty() && !is_bare_file_name(ptm.coefficient_file))
         fail("parameters.coefficients.file", "must be a file name without directories");
+    if (ptm.unbounded && !(ptm.triangle_edge >= 1.0 / 64 && ptm.triangle_edge <= 1))
+        fail("parameters.unbounded.triangle_edge",
+             "must be in [0.015625, 1] maps widths, got " + std::to_string(ptm.triangle_edge));
     if (!ptm.maps) fail("parameters.coefficients", "no coefficient maps loaded");
     const PtmMaps& maps = *ptm.maps;
     if (maps.colour != ptm.colour || maps.coefficients.channels != ptm_channel_count(ptm.colour))

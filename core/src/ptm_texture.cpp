@@ -25,7 +25,15 @@ std::string describe_ptm(const TextureDescription& description)
                   to_string(ptm.colour), ptm.maps->width(), ptm.maps->height(),
                   ptm.coefficient_file.empty() ? "(not written yet)" : ptm.coefficient_file.c_str(), ptm.light[0],
                   ptm.light[1], ptm.light[2]);
-    return text;
+    std::string out = text;
+    if (ptm.unbounded) {
+        std::snprintf(text, sizeof text,
+                      "unbounded    tiled and blended: triangle edge %.4g maps widths = %.1f texels, seed %u\n",
+                      ptm.triangle_edge, ptm.triangle_edge * std::min(ptm.maps->width(), ptm.maps->height()),
+                      unsigned(description.seed));
+        out += text;
+    }
+    return out;
 }
 
 PtmTexture::PtmTexture(const TextureDescription& description) : PtmTexture(description, nullptr) {}
@@ -63,9 +71,17 @@ PtmTexture::PtmTexture(const TextureDescription& description, const Vec2* period
         levels_.push_back(std::move(coarse));
     }
     const double natural[2] = {maps.width() / description.pixels_per_unit, maps.height() / description.pixels_per_unit};
+    if (ptm.unbounded) {
+        const double edge = ptm.triangle_edge * std::min(maps.width(), maps.height());
+        if (period)
+            grid_.emplace(description.seed, edge, std::array<double, 2>{(*period)[0] * description.pixels_per_unit,
+                                                                         (*period)[1] * description.pixels_per_unit});
+        else
+            grid_.emplace(description.seed, edge);
+    }
     for (int axis = 0; axis < 2; ++axis) {
         texels_per_unit_[axis] = description.pixels_per_unit;
-        if (period) {
+        if (period && !grid_) {
             const double repeats = std::max(1.0, std::round((*period)[axis] / natural[axis]));
             texels_per_unit_[axis] *= repeats * natural[axis] / (*period)[axis];
         }
@@ -96,19 +112,37 @@ void PtmTexture::bilinear(const Level& level, double x, double y, double* sum, d
     add_texel(level, int((ix + 1) % level.width), int((iy + 1) % level.height), weight * tx * ty, sum);
 }
 
+void PtmTexture::trilinear(double x, double y, double lod, double* sum, double weight) const
+{
+    const int fine = int(lod);
+    const double t = lod - fine;
+    for (int level = fine; level <= std::min(fine + 1, int(levels_.size()) - 1); ++level) {
+        const double w = level == fine ? 1 - t : t;
+        if (w == 0) continue;
+        const Level& l = levels_[level];
+        bilinear(l, x * l.width / levels_[0].width, y * l.height / levels_[0].height, sum, weight * w);
+    }
+}
+
 std::array<legendre::Terms, 3> PtmTexture::functions(const Vec2& uv, double footprint_units) const
 {
     const double x0 = uv[0] * texels_per_unit_[0], y0 = uv[1] * texels_per_unit_[1];
     const double footprint = footprint_units * std::max(texels_per_unit_[0], texels_per_unit_[1]);
     const double lod = std::clamp(std::log2(std::max(footprint, 1.0)), 0.0, double(levels_.size() - 1));
-    const int fine = int(lod);
-    const double t = lod - fine;
     double sum[floats_per_texel] = {};
-    for (int level = fine; level <= std::min(fine + 1, int(levels_.size()) - 1); ++level) {
-        const double weight = level == fine ? 1 - t : t;
-        if (weight == 0) continue;
-        const Level& l = levels_[level];
-        bilinear(l, x0 * l.width / levels_[0].width, y0 * l.height / levels_[0].height, sum, weight);
+    if (!grid_) {
+        trilinear(x0, y0, lod, sum, 1);
+    } else {
+        // ν + Σ w_i (f_i − ν): the tiles' functions with the grid's weights, one set for all fields.
+        const float* mean = levels_.back().functions.data();
+        double weights = 0;
+        for (const TileVertex& vertex : grid_->blend(x0, y0)) {
+            if (vertex.weight == 0) continue;
+            const std::array<double, 2> t = tile_position(vertex, x0, y0, levels_[0].width, levels_[0].height);
+            trilinear(t[0], t[1], lod, sum, vertex.weight);
+            weights += vertex.weight;
+        }
+        for (int k = 0; k < floats_per_texel; ++k) sum[k] += (1 - weights) * double(mean[k]);
     }
     std::array<legendre::Terms, 3> result{};
     for (int c = 0; c < 3; ++c)

@@ -11,13 +11,28 @@
 // repeats with the maps' size. The periodic form stretches the maps so that a whole number of
 // repeats fills the period (no change when the period is a multiple of the maps' size).
 // eval_solid() projects on the (u, v) = (x, y) plane.
+//
+// Unbounded (PtmParameters::unbounded; docs/models/ptm.md, "Unbounded"): the maps, periodic, are
+// tiled and blended over the tiling model's triangle grid (tiling_grid.h) — one grid, one set of
+// tile offsets and weights for all 18 function coefficients, so each texel's reflectance function
+// is blended as a whole and the shading turns with the light:
+//   f(p) = ν + Σ_i w_i (f_l(p + s_i) − ν),   Σ w_i² = 1,
+// ν the maps' mean function (the 1 × 1 level), f_l the pyramid level of the footprint. Centred,
+// because Σ w_i ∈ [1, √3] would raise the mean (and the radiance) by up to 73 %; Σ w² = 1 keeps
+// the variance of every coefficient (and so of the radiance under any light) for uncorrelated
+// tiles. Lit at L this is exactly ν·B(L) + Σ w_i (relit_i − ν·B(L)) before the clamp: the blend
+// of the source relit at L. The weights are taken at the footprint's centre (the tiling model's
+// per-texel estimator); minification converges to ν, the exact mean. The periodic form uses the
+// grid's periodic lattice.
 #pragma once
 
 #include "legendre_basis.h"
+#include "tiling_grid.h"
 
 #include <stochtex/texture.h>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,12 +64,16 @@ private:
     static constexpr int floats_per_texel = 18;
     void add_texel(const Level& level, int x, int y, double weight, double* sum) const;
     void bilinear(const Level& level, double x, double y, double* sum, double weight) const;
+    /// The trilinear lookup at level-0 texel position (x, y), added to sum with `weight`.
+    void trilinear(double x, double y, double lod, double* sum, double weight) const;
     Rgb lit(const std::array<legendre::Terms, 3>& functions) const;
 
     std::vector<Level> levels_;
     legendre::Terms basis_{};
     double texels_per_unit_[2] = {1, 1};  // level-0 texels per texture unit, per axis
     Rgb mean_{};
+    std::optional<TilingGrid> grid_;  // unbounded only: positions in level-0 texels
+
 };
 
 }  // namespace stochtex

@@ -2,6 +2,9 @@
 #include <stochtex/stex_file.h>
 
 #include "json_fields.h"
+#include "lrp_parameters.h"
+#include "ptm_stex_fields.h"
+#include "tiling_parameters.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -64,6 +67,15 @@ void check_model(const std::string& model, const std::string& source)
 
 /// Numbers are stored as floats in the file, so they must be finite as floats too. (Written as
 /// a negated comparison so that NaN fails it.)
+/// Exactly the parameters of the named model are set: `has` tells whether `model`'s are.
+void check_parameters_match_model(bool has, const char* model, const std::string& named, const std::string& source)
+{
+    if (has != (named == model))
+        json_fields::fail(source, "parameters",
+                          has ? std::string(model) + " parameters given for model '" + named + "'"
+                              : "missing for model '" + std::string(model) + "'");
+}
+
 void check_finite(double value, const std::string& path, const std::string& source)
 {
     if (!(std::fabs(value) <= std::numeric_limits<float>::max()))
@@ -160,6 +172,57 @@ void validate_wavelet(const WaveletParameters& parameters, const std::string& so
     }
 }
 
+// Gabor octaves: frequencies above 1 cycle per exemplar pixel are finer than twice the photo's
+// Nyquist frequency (a description that wants them uses a larger pixels_per_unit); the lower
+// bound keeps the impulse cells' indices finite at any texture coordinate. Bandwidth and
+// impulse count bound the cost of an evaluation.
+constexpr double min_gabor_frequency = 1e-6, max_gabor_frequency = 1;
+constexpr double min_gabor_bandwidth = 1.0 / 16, max_gabor_bandwidth = 16;
+constexpr double min_impulses_per_kernel = 1, max_impulses_per_kernel = 256;
+
+void check_range(double value, double min, double max, const std::string& path, const std::string& source)
+{
+    check_finite(value, path, source);
+    if (!(value >= min && value <= max))
+        json_fields::fail(source, path, "must be in [" + show(min) + ", " + show(max) + "], got " + show(value));
+}
+
+void validate_gabor(const GaborParameters& parameters, const std::string& source)
+{
+    double length2 = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        check_finite(parameters.direction[i], index_path("parameters.direction", i), source);
+        length2 += parameters.direction[i] * parameters.direction[i];
+    }
+    if (!(std::fabs(std::sqrt(length2) - 1) <= orthonormal_tolerance))
+        json_fields::fail(source, "parameters.direction",
+                          "must be a unit vector (length within " + show(orthonormal_tolerance) + " of 1), its length is " +
+                              show(std::sqrt(length2)));
+    check_range(parameters.bandwidth, min_gabor_bandwidth, max_gabor_bandwidth, "parameters.bandwidth", source);
+    check_range(parameters.impulses_per_kernel, min_impulses_per_kernel, max_impulses_per_kernel,
+                "parameters.impulses_per_kernel", source);
+    const std::size_t octaves = parameters.frequencies.size();
+    if (octaves < 1 || octaves > max_bands)
+        json_fields::fail(source, "parameters.frequencies",
+                          "expected 1 to " + std::to_string(max_bands) + " octaves, got " + std::to_string(octaves));
+    for (std::size_t k = 0; k < octaves; ++k)
+        check_range(parameters.frequencies[k], min_gabor_frequency, max_gabor_frequency,
+                    index_path("parameters.frequencies", k), source);
+    for (std::size_t channel = 0; channel < 3; ++channel) {
+        const std::string path = index_path("parameters.weights", channel);
+        const std::vector<double>& weights = parameters.weights[channel];
+        if (weights.size() != octaves)
+            json_fields::fail(source, path,
+                              "has " + std::to_string(weights.size()) + " weights but frequencies has " +
+                                  std::to_string(octaves) + " octaves");
+        for (std::size_t k = 0; k < octaves; ++k) {
+            check_finite(weights[k], index_path(path, k), source);
+            if (weights[k] < 0)
+                json_fields::fail(source, index_path(path, k), "weights must not be negative, got " + show(weights[k]));
+        }
+    }
+}
+
 /// Also used for the plugin's open-time hints, hence public through validate_image_layout().
 void check_image_layout(const ImageLayout& image, const std::string& source)
 {
@@ -205,6 +268,25 @@ WaveletParameters read_wavelet(const Field& parameters)
     WaveletParameters result;
     std::vector<Field> channels = parameters["band_weights"].elements(3, "channels");
     for (std::size_t channel = 0; channel < 3; ++channel) result.band_weights[channel] = channels[channel].numbers();
+    return result;
+}
+
+GaborParameters read_gabor(const Field& parameters)
+{
+    parameters.expect_keys({"kind", "direction", "bandwidth", "impulses_per_kernel", "frequencies", "weights"});
+    GaborParameters result;
+    const Field kind = parameters["kind"];
+    try {
+        result.kind = gabor_kind_from_string(kind.string());
+    } catch (const Error& e) {
+        kind.fail(e.what());
+    }
+    result.direction = parameters["direction"].numbers<3>();
+    result.bandwidth = parameters["bandwidth"].number();
+    result.impulses_per_kernel = parameters["impulses_per_kernel"].number();
+    result.frequencies = parameters["frequencies"].numbers();
+    std::vector<Field> channels = parameters["weights"].elements(3, "channels");
+    for (std::size_t channel = 0; channel < 3; ++channel) result.weights[channel] = channels[channel].numbers();
     return result;
 }
 
@@ -281,6 +363,18 @@ Json to_json(const TextureDescription& description)
 
     Json& parameters = root["parameters"] = Json::object();
     if (description.wavelet) parameters["band_weights"] = description.wavelet->band_weights;
+    if (description.gabor) {
+        const GaborParameters& gabor = *description.gabor;
+        parameters["kind"] = to_string(gabor.kind);
+        parameters["direction"] = gabor.direction;
+        parameters["bandwidth"] = gabor.bandwidth;
+        parameters["impulses_per_kernel"] = gabor.impulses_per_kernel;
+        parameters["frequencies"] = gabor.frequencies;
+        parameters["weights"] = gabor.weights;
+    }
+    if (description.tiling) parameters = tiling_parameters_json(*description.tiling);
+    if (description.lrp) parameters = lrp_parameters_json(*description.lrp);
+    if (description.ptm) write_ptm_parameters(parameters, *description.ptm);
 
     const Provenance& provenance = description.provenance;
     Json& source = root["provenance"];
@@ -311,11 +405,25 @@ void validate(const TextureDescription& description, const std::string& source)
     check_version(description.version, source);
     check_model(description.model, source);
     // Exactly the parameters of the named model are set.
-    if (description.wavelet.has_value() != (description.model == "wavelet"))
-        json_fields::fail(source, "parameters",
-                          description.wavelet ? "wavelet parameters given for model '" + description.model + "'"
-                                              : std::string("missing for model 'wavelet'"));
+    check_parameters_match_model(description.wavelet.has_value(), "wavelet", description.model, source);
     if (description.wavelet) validate_wavelet(*description.wavelet, source);
+    check_parameters_match_model(description.gabor.has_value(), "gabor", description.model, source);
+    if (description.gabor) validate_gabor(*description.gabor, source);
+    if (description.tiling.has_value() != (description.model == "tiling"))
+        json_fields::fail(source, "parameters",
+                          description.tiling ? "tiling parameters given for model '" + description.model + "'"
+                                             : std::string("missing for model 'tiling'"));
+    if (description.tiling) validate_tiling(description, source);
+    if (description.lrp.has_value() != (description.model == "lrp"))
+        json_fields::fail(source, "parameters",
+                          description.lrp ? "lrp parameters given for model '" + description.model + "'"
+                                          : std::string("missing for model 'lrp'"));
+    if (description.lrp) validate_lrp(*description.lrp, source);
+    if (description.ptm.has_value() != (description.model == "ptm"))
+        json_fields::fail(source, "parameters",
+                          description.ptm ? "ptm parameters given for model '" + description.model + "'"
+                                          : std::string("missing for model 'ptm'"));
+    if (description.ptm) validate_ptm(description, source);
 
     check_positive(description.pixels_per_unit, "scale.pixels_per_unit", source);
     check_positive(description.unit_size_m, "scale.unit_size_m", source);
@@ -371,6 +479,11 @@ TextureDescription parse_stex(const std::string& text, const std::string& source
     read_histograms(root["histograms"], description);
     // One branch per known model (check_model has run).
     if (description.model == "wavelet") description.wavelet = read_wavelet(root["parameters"]);
+    if (description.model == "gabor") description.gabor = read_gabor(root["parameters"]);
+    if (description.model == "tiling") description.tiling = read_tiling_parameters(root["parameters"]);
+    if (description.model == "lrp") description.lrp = read_lrp_parameters(root["parameters"]);
+    // ptm: the coefficient maps are read from beside the file the text came from.
+    if (description.model == "ptm") description.ptm = read_ptm_parameters(root["parameters"], source_name);
     read_provenance(root["provenance"], description.provenance);
     if (root.contains("image")) description.image = read_image_layout(root["image"]);
 
@@ -399,7 +512,9 @@ std::string format_stex(const TextureDescription& description)
 void write_stex(const std::string& path, const TextureDescription& description)
 {
     validate(description, path);
-    const std::string text = json_fields::format(to_json(description));
+    // ptm: the coefficient maps go first, beside the file, named after it.
+    const std::string text = json_fields::format(
+        to_json(description.ptm ? write_ptm_coefficients_beside(path, description) : description));
     // Write beside the target and rename: readers never see a half-written file, and a failed
     // write leaves an existing file intact.
     const std::string temporary = path + ".tmp";

@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gabor_texture.h"
+#include "lrp_texture.h"
+#include "ptm_texture.h"
+#include "tiling_texture.h"
 #include "wavelet_texture.h"
 
 namespace stochtex {
@@ -22,6 +26,10 @@ std::unique_ptr<Texture> make_texture(const TextureDescription& description)
 {
     validate(description, "texture description");
     if (description.model == "wavelet") return std::make_unique<WaveletTexture>(description);
+    if (description.model == "gabor") return std::make_unique<GaborTexture>(description);
+    if (description.model == "tiling") return std::make_unique<TilingTexture>(description);
+    if (description.model == "ptm") return std::make_unique<PtmTexture>(description);
+    if (description.model == "lrp") return std::make_unique<LrpTexture>(description);
     throw Error("texture description: model '" + description.model + "' has no implementation in this build");
 }
 
@@ -31,6 +39,10 @@ std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& descrip
     for (double p : period)
         if (!(p > 0) || !std::isfinite(p)) throw Error("periodic texture: the period must be positive and finite");
     if (description.model == "wavelet") return std::make_unique<WaveletTexture>(description, period);
+    if (description.model == "gabor") return std::make_unique<GaborTexture>(description, period);
+    if (description.model == "tiling") return std::make_unique<TilingTexture>(description, period);
+    if (description.model == "ptm") return std::make_unique<PtmTexture>(description, period);
+    if (description.model == "lrp") return std::make_unique<LrpTexture>(description, period);
     throw Error("periodic texture: model '" + description.model + "' has no periodic form in this build");
 }
 

@@ -27,9 +27,26 @@ ColourMode colour_mode_from_string(const std::string& name)
     throw Error("unknown colour mode '" + name + "' (valid: " + valid + ")");
 }
 
+const char* to_string(GaborKind kind)
+{
+    switch (kind) {
+    case GaborKind::isotropic: return "isotropic";
+    case GaborKind::anisotropic: return "anisotropic";
+    case GaborKind::hybrid: return "hybrid";
+    }
+    throw Error("invalid GaborKind value " + std::to_string(static_cast<int>(kind)));
+}
+
+GaborKind gabor_kind_from_string(const std::string& name)
+{
+    for (GaborKind kind : {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid})
+        if (name == to_string(kind)) return kind;
+    throw Error("unknown Gabor kind '" + name + "' (valid: isotropic, anisotropic, hybrid)");
+}
+
 const std::vector<std::string>& known_models()
 {
-    static const std::vector<std::string> models{"wavelet"};
+    static const std::vector<std::string> models{"wavelet", "gabor", "tiling", "lrp", "ptm"};
     return models;
 }
 

@@ -51,6 +51,13 @@ void TilingGrid::draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const
     vertex.offset = {ox, rng.uniform()};
 }
 
+std::array<double, 2> tile_position(const TileVertex& vertex, double x, double y, int width, int height)
+{
+    const double shift_x = std::round(vertex.offset[0] * width - (vertex.centre[0] - vertex.period_shift[0]));
+    const double shift_y = std::round(vertex.offset[1] * height - (vertex.centre[1] - vertex.period_shift[1]));
+    return {x - vertex.period_shift[0] + shift_x, y - vertex.period_shift[1] + shift_y};
+}
+
 TileBlend TilingGrid::blend(double x, double y) const
 {
     // Skew to the lattice basis (1, 0), (½, √3/2): cell = floor, f = barycentric fractions.

@@ -31,6 +31,13 @@ struct TileVertex {
 };
 using TileBlend = std::array<TileVertex, 3>;
 
+/// Where the point (x, y) reads a periodic width × height exemplar in `vertex`'s tile (exemplar
+/// pixels; the caller wraps). The tile's shift is a whole number of pixels: a raster at the
+/// exemplar's pixel scale then reads exemplar pixels, not blends of four (which would lose
+/// fine-scale variance); it is rounded at the lattice representative, so periods stay exact.
+/// Every tiled model (the tiling noise, the unbounded ptm) addresses its tiles through this.
+std::array<double, 2> tile_position(const TileVertex& vertex, double x, double y, int width, int height);
+
 class TilingGrid {
 public:
     /// edge: the triangles' edge in exemplar pixels.

@@ -26,13 +26,8 @@ Moments TilingNoise::estimate(double x, double y, double level, TexelInterpolati
     result.mean = global_.mean;
     for (const TileVertex& vertex : blend) {
         if (vertex.weight == 0) continue;
-        // The tile's shift into the exemplar is a whole number of pixels: a raster at the
-        // exemplar's pixel scale then reads exemplar pixels, not blends of four (which would
-        // lose fine-scale variance). Rounded at the lattice representative, so periods stay exact.
-        const double shift_x = std::round(vertex.offset[0] * width() - (vertex.centre[0] - vertex.period_shift[0]));
-        const double shift_y = std::round(vertex.offset[1] * height() - (vertex.centre[1] - vertex.period_shift[1]));
-        const double tx = x - vertex.period_shift[0] + shift_x, ty = y - vertex.period_shift[1] + shift_y;
-        const Moments tile = pyramid_->sample(level, tx, ty, interpolation);
+        const std::array<double, 2> t = tile_position(vertex, x, y, width(), height());
+        const Moments tile = pyramid_->sample(level, t[0], t[1], interpolation);
         const double w = vertex.weight, w2 = w * w;
         for (int a = 0; a < channels(); ++a) {
             result.mean[a] += w * (tile.mean[a] - global_.mean[a]);

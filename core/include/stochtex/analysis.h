@@ -29,6 +29,20 @@ struct AnalysisOptions {
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     PsdEstimator psd = PsdEstimator::periodic;
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports
+                                    ///< (gabor: octaves, the same count)
+    // gabor model (docs/models/gabor.md)
+    GaborKind gabor_kind = GaborKind::isotropic;
+    double gabor_impulses = 16;     ///< impulses per kernel, 1 … 256
+    double gabor_bandwidth = 0;     ///< a/F of the octaves; 0: chosen by the fit
+    // tiling model (docs/models/tiling.md)
+    int tiling_exemplar_size = 256; ///< the exemplar: a centred crop, sides the largest powers of two ≤ this
+    int tiling_exemplar_bits = 8;   ///< 8 or 16 bits per stored sample
+    // lrp model (docs/models/lrp.md)
+    int lrp_cosines = 50;           ///< J: cosines per window over all strata and the structure, 1 … 256
+    int lrp_strata = 8;             ///< L: random-phase strata, 1 … 16
+    double lrp_structure = 0.1;     ///< r: energy share of the fixed-phase structure, [0, 1); 0: noise only
+    bool lrp_placement = true;      ///< random placement of the structure
+    double lrp_turbulence = -1;     ///< turbulence σ in exemplar pixels; < 0: automatic
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;
     std::string source_name;        ///< recorded in the provenance

@@ -24,6 +24,16 @@ RadialPsd radial_psd(const std::vector<float>& plane, int width, int height, int
 /// RMS over the frequency bins both spectra have (matched by frequency) of 10·log10(Pa/Pb), in dB.
 double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b);
 
+/// The orientation of one channel's power spectrum (mean removed; Moisan's periodic component,
+/// so image edges add no "+"): the power-weighted mean of e^{2iθ} over all frequencies, θ a
+/// frequency's angle from the x axis towards y up. strength in [0, 1] (0: no preferred
+/// direction); angle in (−90°, 90°], the dominant frequency direction. A rough surface lit from
+/// azimuth φ gains power along φ: relit textures must match their truth in this too.
+struct SpectralOrientation {
+    double strength = 0, angle_degrees = 0;
+};
+SpectralOrientation spectral_orientation(const std::vector<float>& plane, int width, int height);
+
 /// 1-Wasserstein distance between the empirical distributions of two samples (any sizes).
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b);
 

@@ -140,6 +140,25 @@ struct PtmSynthesisReport {
 PtmMaps synthesize_ptm(const PtmMaps& exemplar, const PtmSynthesisOptions& options,
                        PtmSynthesisReport* report = nullptr, const ProgressCallback& progress = {});
 
+// ---- Unbounded: tiling and blending of the coefficient fields -------------------------------------
+
+struct PtmUnboundedOptions {
+    /// The triangle grid's edge in maps widths (of the shorter side): the tiling model's default,
+    /// 1/(2√3) (Deliot–Heitz), hexagonal tiles ≈ 0.58 maps widths across.
+    double triangle_edge = 0.28867513459481287;
+    /// Replace every coefficient channel by its periodic component (Moisan) first, so that tiles
+    /// cut across the maps' edges show no seam. Linear and the same for every channel, so the
+    /// functions stay coherent. Off for maps that already tile (`ptm synthesize --tileable`).
+    bool make_periodic = true;
+    std::uint32_t seed = 1;  ///< the tile offsets
+};
+/// Each coefficient channel replaced by its periodic component (keeps every channel's mean).
+PtmMaps periodic_ptm_maps(const PtmMaps& maps);
+/// An unbounded, random-access version of a ptm description (docs/models/ptm.md, "Unbounded"):
+/// its maps tiled and blended with one set of tile offsets and variance-preserving weights for
+/// all coefficient fields, mean-centred. Same light; seed and grid from `options`.
+TextureDescription make_unbounded_ptm(const TextureDescription& ptm, const PtmUnboundedOptions& options);
+
 // ---- Evaluation against a known truth (relief_shading.h) ----------------------------------------
 
 /// A relit image against the truth under the same light, on Rec.709 luma.

@@ -1,0 +1,180 @@
+// Blender scene tests (CTest label "scene"; docs/blender.md): Debian's Blender, headless, installs
+// and enables the add-on from the built zip, analyses the committed exemplar with the add-on's
+// operator, builds the material, renders with Cycles (CPU, few samples, fixed seed, no denoiser),
+// and the render is compared with the core's own render of the same texture and region.
+// Skips when `blender` is not on PATH (scripts/install-deps.sh --with-blender installs it).
+#include "test_support.h"
+
+#include <stochtex/image.h>
+#include <stochtex/metrics.h>
+#include <stochtex/render.h>
+#include <stochtex/stex_file.h>
+#include <stochtex/texture.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace stochtex;
+
+namespace {
+
+bool have_blender() { return test::on_path("blender"); }
+
+/// Runs scenes/blender/<script> in a headless Blender with its own user-scripts folder (the
+/// add-on is installed there, not in the user's profile) and the built stex.
+test::CommandResult run_blender(const std::string& script, const std::string& out, const std::string& extra = "")
+{
+    const std::string line = "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") +
+                             " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI) +
+                             " timeout 300 blender -b --factory-startup --python " +
+                             test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/" + script) +
+                             " -- --addon " + test::shell_quote(STOCHTEX_ADDON_ZIP) + " --photo " +
+                             test::shell_quote(test::repo_exemplar("concrete_512.png")) + " --out " +
+                             test::shell_quote(out) + " " + extra;
+    return test::run_command(line);
+}
+
+nlohmann::json read_json(const std::string& path)
+{
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+double rms_difference_over_sigma(const Image& a, const Image& b)
+{
+    double sum = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += double(a.pixels[i] - b.pixels[i]) * (a.pixels[i] - b.pixels[i]);
+    const ComparisonReport self = compare_images(b, b);
+    const double sigma = (self.stddev_reference[0] + self.stddev_reference[1] + self.stddev_reference[2]) / 3;
+    return std::sqrt(sum / double(a.pixels.size())) / sigma;
+}
+
+// The plane shows the top-left plane_size² texels of a bake_size² map (one period; a period
+// much smaller than the coarsest band's wavelength, 256 · 2^7 photo pixels for 8 bands, holds
+// only approximations of the coarse bands: make_periodic_texture, docs/oiio-plugin.md).
+constexpr int plane_size = 512, bake_size = 2048;
+
+TEST(BlenderScene, MeasurementPlaneMatchesCore)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const std::string out = test::temp_dir("blender-plane");
+    const auto result = run_blender("measure_plane.py", out, "--size " + std::to_string(plane_size) + " --bake-size " + std::to_string(bake_size) + " --samples 16");
+    ASSERT_EQ(result.status, 0) << result.output;
+    const auto report = read_json(out + "/plane.json");
+    std::printf("analyse + bake %.2f s, Cycles render %dx%d at 16 samples %.2f s\n",
+                report["analyse_and_bake_seconds"].get<double>(), plane_size, plane_size,
+                report["render_seconds"].get<double>());
+    EXPECT_TRUE(report["image_packed"].get<bool>()) << "an unsaved blend packs the baked map";
+
+    const Image blender = read_image_linear(out + "/plane.exr");
+    ASSERT_EQ(blender.width, plane_size);
+    const TextureDescription description = read_stex(out + "/plane.stex");  // the text stored in the blend
+    RenderSettings settings;
+    settings.width = settings.height = plane_size;
+    settings.units_per_pixel = 1.0 / description.pixels_per_unit;  // the bake's texels: photo pixels
+
+    // 1. Texel for texel: the plane shows the bake, the bake is the core's periodic texture.
+    // Differences come only from the map's half floats (relative rounding ≤ 2^-12 of values
+    // ~5σ: ~1e-3 σ RMS) and Cycles' 0.01 px pixel filter; 0.01 σ leaves room for neither a
+    // flipped or shifted map (0.7 σ and more) nor a colour-space error (tens of per cent).
+    const Vec2 period{bake_size / description.pixels_per_unit, bake_size / description.pixels_per_unit};
+    const Image baked = render(*make_periodic_texture(description, period), settings);
+    const double texel_rms = rms_difference_over_sigma(blender, baked);
+    std::printf("texel-for-texel RMS difference: %.4f sigma\n", texel_rms);
+    EXPECT_LT(texel_rms, 0.01);
+
+    // 2. Statistics against the core's own render of the texture (non-periodic, `stex render`),
+    // same region, same seed. The periodic texture is another realisation of the same process
+    // (its coarse bands use other tiles), so a distance of zero is not expected; the yardstick
+    // is how far the core's own renders at 8 other seeds lie from the reference:
+    //   mean colour: within 3 × the RMS of their mean differences (a 3-sigma bound: the
+    //     difference of two realisations' means is roughly normal);
+    //   log-PSD distance and W1 (distances, not signed): within 1.5 × the largest of the 8.
+    const Image reference = render(*make_texture(description), settings);
+    const ComparisonReport measured = compare_images(reference, blender);
+    constexpr int seeds = 8;
+    std::array<double, 3> mean_rms{}, psd_max{}, w1_max{};
+    for (std::uint32_t k = 1; k <= seeds; ++k) {
+        TextureDescription other = description;
+        other.seed = description.seed + k;
+        const ComparisonReport spread = compare_images(reference, render(*make_texture(other), settings));
+        for (int c = 0; c < 3; ++c) {
+            const double d = spread.mean_test[c] - spread.mean_reference[c];
+            mean_rms[c] += d * d / seeds;
+            psd_max[c] = std::max(psd_max[c], spread.log_psd_db[c]);
+            w1_max[c] = std::max(w1_max[c], spread.w1[c]);
+        }
+    }
+    std::printf("Blender vs core (seed %u) | core at %d other seeds vs core (RMS or max)\n", description.seed, seeds);
+    for (int c = 0; c < 3; ++c) {
+        const double mean_error = std::abs(measured.mean_test[c] - measured.mean_reference[c]);
+        mean_rms[c] = std::sqrt(mean_rms[c]);
+        std::printf("  %c: mean %.5f vs %.5f (|d| %.5f | RMS %.5f)  log-PSD %.2f dB | max %.2f  W1 %.5f | max %.5f\n",
+                    "RGB"[c], measured.mean_test[c], measured.mean_reference[c], mean_error, mean_rms[c],
+                    measured.log_psd_db[c], psd_max[c], measured.w1[c], w1_max[c]);
+        EXPECT_LE(mean_error, 3 * mean_rms[c]);
+        EXPECT_LE(measured.log_psd_db[c], 1.5 * psd_max[c]);
+        EXPECT_LE(measured.w1[c], 1.5 * w1_max[c]);
+    }
+}
+
+TEST(BlenderScene, AddonFailuresAreReportsAndLeaveNothing)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const std::string out = test::temp_dir("blender-checks");
+    const auto result = run_blender("addon_checks.py", out);
+    ASSERT_EQ(result.status, 0) << result.output;
+    EXPECT_EQ(result.output.find("Traceback"), std::string::npos) << result.output;
+    const auto checks = read_json(out + "/checks.json");
+    EXPECT_GE(checks.size(), 8u);
+    for (const auto& [name, check] : checks.items())
+        EXPECT_TRUE(check["ok"].get<bool>()) << name << ": " << check["detail"].get<std::string>();
+}
+
+TEST(BlenderScene, InteractiveOperatorIsModalCancellableAndUndoable)
+{
+    if (!have_blender() || !test::on_path("xvfb-run"))
+        GTEST_SKIP() << "needs blender and xvfb-run (scripts/install-deps.sh --with-blender)";
+    const std::string out = test::temp_dir("blender-modal");
+    const std::string line = "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") +
+                             " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI) +
+                             " timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' blender --factory-startup "
+                             "--enable-event-simulate --python " +
+                             test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/modal_checks.py") +
+                             " -- --addon " + test::shell_quote(STOCHTEX_ADDON_ZIP) + " --photo " +
+                             test::shell_quote(test::repo_exemplar("concrete_512.png")) + " --out " + test::shell_quote(out);
+    const auto result = test::run_command(line);
+    ASSERT_EQ(result.status, 0) << result.output;
+    const auto checks = read_json(out + "/modal.json");
+    EXPECT_EQ(checks.size(), 5u) << result.output;
+    for (const auto& [name, check] : checks.items()) {
+        std::printf("%s: %s\n", name.c_str(), check["detail"].get<std::string>().c_str());
+        EXPECT_TRUE(check["ok"].get<bool>()) << name << ": " << check["detail"].get<std::string>();
+    }
+}
+
+TEST(BlenderScene, ShowcaseRenders)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const std::string out = test::temp_dir("blender-showcase");
+    const auto result = run_blender("showcase.py", out, "--width 320 --height 180 --samples 8");
+    ASSERT_EQ(result.status, 0) << result.output;
+    const Image image = read_image_linear(out + "/showcase.png");
+    ASSERT_EQ(image.width, 320);
+    const ComparisonReport self = compare_images(image, image);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_GT(self.mean_reference[c], 0.01) << "a black render";
+        EXPECT_GT(self.stddev_reference[c], 0.005) << "a flat render";
+    }
+    const auto report = read_json(out + "/showcase.json");
+    std::printf("showcase 320x180, 8 samples: %.2f s render\n", report["render_seconds"].get<double>());
+}
+
+}  // namespace

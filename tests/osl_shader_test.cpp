@@ -1,0 +1,286 @@
+// OSL shaders (docs/osl.md): the generated shader's maths against the core, and oslc/testshade
+// when they are installed.
+//
+// Debian 12 packages no OSL, so the shader's maths is checked here without oslc: osl/stochtex_wavelet.h
+// is written in the common subset of OSL and C++, and this file compiles it as C++ with a
+// texture() that reads the noise tile files `stex osl` writes (closest texel, periodic), feeding
+// it the parameter values parsed back from a generated .osl file. That checks the generator, the
+// tiles and the transcription together against Texture::eval / eval_solid. What it cannot check
+// is OSL's own syntax and runtime: the oslc/testshade tests do, and skip where oslc is absent.
+#include "test_support.h"
+
+#include <stochtex/analysis.h>
+#include <stochtex/error.h>
+#include <stochtex/image.h>
+#include <stochtex/metrics.h>
+#include <stochtex/osl/osl_shader.h>
+#include <stochtex/render.h>
+#include <stochtex/stex_file.h>
+#include <stochtex/texture.h>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <regex>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+// ---- The OSL-in-C++ shim: the names the header uses that OSL provides -------------------------
+namespace osl_shim {
+
+using string = const char*;
+using std::floor;
+using std::log2;
+using std::pow;
+using std::sqrt;
+inline float max(float a, float b) { return a > b ? a : b; }
+
+struct Tile {
+    int width = 0, height = 0;
+    std::vector<float> texels;
+};
+std::map<std::string, Tile>& tiles()
+{
+    static std::map<std::string, Tile> loaded;
+    return loaded;
+}
+
+/// OIIO's closest-texel lookup with periodic wrap: texel floor(s·width), floor(t·height).
+float texture(string name, float s, float t, ...)
+{
+    const Tile& tile = tiles().at(name);
+    const int x = int(std::floor(s * tile.width)), y = int(std::floor(t * tile.height));
+    const int wx = ((x % tile.width) + tile.width) % tile.width, wy = ((y % tile.height) + tile.height) % tile.height;
+    return tile.texels[std::size_t(wy) * tile.width + wx];
+}
+
+#define STOCHTEX_OUT(type) type&
+#include "../osl/stochtex_wavelet.h"
+
+}  // namespace osl_shim
+
+namespace {
+
+using namespace stochtex;
+
+/// The parameters of a generated shader, read back from its text.
+struct ShaderParameters {
+    std::map<std::string, std::vector<float>> arrays;
+    std::map<std::string, std::string> strings;
+    std::map<std::string, float> scalars;
+};
+
+ShaderParameters parse_parameters(const std::string& text)
+{
+    ShaderParameters result;
+    const std::regex array_re(R"((?:float|int) (\w+)\[\d+\] = \{([^}]*)\})");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), array_re); it != std::sregex_iterator(); ++it) {
+        std::vector<float> values;
+        std::string body = (*it)[2];
+        std::replace(body.begin(), body.end(), ',', ' ');
+        std::istringstream in(body);
+        for (float v; in >> v;) values.push_back(v);
+        result.arrays[(*it)[1]] = values;
+    }
+    const std::regex string_re(R"(string (\w+) = "([^"]*)\")");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), string_re); it != std::sregex_iterator(); ++it)
+        result.strings[(*it)[1]] = (*it)[2];
+    const std::regex scalar_re(R"((?:float|int) (\w+) = ([-0-9.eE+]+))");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), scalar_re); it != std::sregex_iterator(); ++it)
+        result.scalars[(*it)[1]] = std::stof((*it)[2]);
+    return result;
+}
+
+osl_shim::Tile read_tile(const std::string& path)
+{
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) throw Error(path + ": " + OIIO::geterror());
+    osl_shim::Tile tile;
+    tile.width = input->spec().width;
+    tile.height = input->spec().height;
+    tile.texels.resize(std::size_t(tile.width) * tile.height);
+    if (input->spec().nchannels != 1 || !input->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, tile.texels.data()))
+        throw Error(path + ": not a one-channel tile");
+    return tile;
+}
+
+/// A generated shader evaluated through the shim.
+class ShimShader {
+public:
+    ShimShader(const TextureDescription& description, const std::string& dir)
+    {
+        osl::OslShaderOptions options;
+        options.shader_name = "stochtex_test";
+        options.tile_2d_path = dir + "/stochtex_noise_2d.exr";
+        options.tile_3d_path = dir + "/stochtex_noise_3d.exr";
+        text = osl::make_osl_shader(description, options);
+        osl::write_noise_tiles(options.tile_2d_path, options.tile_3d_path);
+        p_ = parse_parameters(text);
+        for (const char* name : {"tile_2d", "tile_3d"})
+            osl_shim::tiles()[p_.strings.at(name)] = read_tile(p_.strings.at(name));
+    }
+
+    Rgb eval(bool solid, double x, double y, double z, double footprint_px)
+    {
+        std::vector<int> knot_count;
+        for (float c : p_.arrays.at("knot_count")) knot_count.push_back(int(c));
+        float r = 0, g = 0, b = 0;
+        osl_shim::stochtex_wavelet(solid, float(x), float(y), float(z), float(footprint_px), int(p_.scalars.at("band_count")),
+                                   a("scale"), a("weight"), a("offset"), a("sigma_m"), p_.scalars.at("sigma_n2"),
+                                   p_.scalars.at("solid_gain"), knot_count.data(), a("knot_z"), a("knot_value"),
+                                   a("knot_slope"), a("gh_node"), a("gh_weight"), a("mean"), a("basis"),
+                                   p_.strings.at("tile_2d").c_str(), int(p_.scalars.at("size_2d")),
+                                   p_.strings.at("tile_3d").c_str(), int(p_.scalars.at("size_3d")),
+                                   int(p_.scalars.at("per_row_3d")), r, g, b);
+        return {r, g, b};
+    }
+    float ppu() const { return p_.scalars.at("pixels_per_unit"); }
+    std::string text;
+
+private:
+    float* a(const std::string& name) { return p_.arrays.at(name).data(); }
+    ShaderParameters p_;
+};
+
+TextureDescription concrete(HistogramMode histogram, ColourMode colour = ColourMode::pca)
+{
+    AnalysisOptions options;
+    options.histogram = histogram;
+    options.colour_mode = colour;
+    return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
+}
+
+/// Largest |shader − core| over random points and footprints (1/8 … 512 exemplar pixels).
+double max_difference(const TextureDescription& description, bool solid, const std::string& dir)
+{
+    ShimShader shader(description, dir);
+    const auto texture = make_texture(description);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> position(-3.0, 3.0), log_footprint(-3.0, 9.0);
+    double worst = 0;
+    for (int i = 0; i < 400; ++i) {
+        const double x = position(rng), y = position(rng), z = position(rng);
+        const double footprint_px = std::exp2(log_footprint(rng));
+        const double units = footprint_px / description.pixels_per_unit;
+        Rgb core;
+        if (solid) {
+            SurfacePoint point;
+            point.p = {x, y, z};
+            point.dpdx = {units, 0, 0};
+            point.dpdy = {0, units, 0};
+            core = texture->eval_solid(point);
+        } else {
+            core = texture->eval({x, y}, Footprint2D::square(units));
+        }
+        const Rgb osl = shader.eval(solid, x, y, z, footprint_px);
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(osl[c] - core[c])));
+    }
+    return worst;
+}
+
+double colour_scale(const TextureDescription& description)
+{
+    return std::max({description.mean[0], description.mean[1], description.mean[2]});
+}
+
+// Float rounding of lattice positions (|x · scale + offset| up to ~2000 cells: ulp 1e-4 cell)
+// moves the spline by ~1e-4 of a coefficient: measured 2.5e-5 of the mean colour at most.
+// A wrong offset, weight, fade or histogram knot moves values by ~0.1 of the mean or more.
+constexpr double tolerance = 2e-4;
+
+TEST(OslShader, TwoDimensionalShaderMatchesCore)
+{
+    const std::string dir = test::temp_dir("osl2d");
+    for (const auto histogram : {HistogramMode::off, HistogramMode::on}) {
+        const TextureDescription description = concrete(histogram);
+        const double diff = max_difference(description, false, dir);
+        EXPECT_LT(diff / colour_scale(description), tolerance) << "histogram " << int(histogram) << ": max |osl - core| " << diff;
+    }
+}
+
+TEST(OslShader, SolidShaderMatchesCore)
+{
+    const std::string dir = test::temp_dir("osl3d");
+    const TextureDescription description = concrete(HistogramMode::on);
+    const double diff = max_difference(description, true, dir);
+    EXPECT_LT(diff / colour_scale(description), tolerance) << "max |osl - core| " << diff;
+}
+
+TEST(OslShader, RgbColourModeMatchesCore)
+{
+    const std::string dir = test::temp_dir("oslrgb");
+    const TextureDescription description = concrete(HistogramMode::automatic, ColourMode::rgb);
+    EXPECT_LT(max_difference(description, false, dir) / colour_scale(description), tolerance);
+}
+
+TEST(OslShader, GeneratedShaderIsSelfContained)
+{
+    const std::string dir = test::temp_dir("oslself");
+    ShimShader shader(concrete(HistogramMode::automatic), dir);
+    EXPECT_EQ(shader.text.find("#include"), std::string::npos) << "the header must be inlined";
+    EXPECT_NE(shader.text.find("shader stochtex_test("), std::string::npos);
+    EXPECT_EQ(shader.text.find("@stochtex-parameters"), std::string::npos);
+    for (char c : shader.text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
+}
+
+TEST(OslShader, BadNamesAndModelsAreErrors)
+{
+    osl::OslShaderOptions options;
+    options.shader_name = "3d shader";
+    EXPECT_THROW(osl::make_osl_shader(concrete(HistogramMode::off), options), Error);
+    EXPECT_EQ(osl::osl_shader_name_from_path("out/rust 2.osl"), "stochtex_rust_2");
+}
+
+// ---- With OSL installed: compile every shader, and compare testshade's output statistically -----
+
+TEST(OslCompiler, ShadersCompileWithOslc)
+{
+    if (!test::on_path("oslc")) GTEST_SKIP() << "oslc not on PATH (Debian 12 packages no OSL): shaders not compiled";
+    const std::string dir = test::temp_dir("oslc");
+    const std::string source = STOCHTEX_SOURCE_DIR "/osl";
+    for (const char* shader : {"stochtex_wavelet.osl", "stochtex_texture.osl"}) {
+        const auto result = test::run_command("cd " + test::shell_quote(dir) + " && oslc -I" + test::shell_quote(source) + " " +
+                                              test::shell_quote(source + "/" + shader));
+        EXPECT_EQ(result.status, 0) << shader << ":\n" << result.output;
+    }
+    const std::string generated = dir + "/generated.osl";
+    std::ofstream(generated) << ShimShader(concrete(HistogramMode::on), dir).text;
+    const auto result = test::run_command("cd " + test::shell_quote(dir) + " && oslc generated.osl");
+    EXPECT_EQ(result.status, 0) << result.output;
+}
+
+TEST(OslCompiler, TestshadeMatchesCoreStatistics)
+{
+    if (!test::on_path("oslc") || !test::on_path("testshade")) GTEST_SKIP() << "oslc/testshade not on PATH: not run";
+    const std::string dir = test::temp_dir("testshade");
+    const TextureDescription description = concrete(HistogramMode::on);
+    std::ofstream(dir + "/generated.osl") << ShimShader(description, dir).text;
+    // testshade shades a grid whose P runs over [0, 1]²; Scale maps it to 0.5 texture units, so
+    // 256 px cover 256 exemplar pixels at 512 px per unit: the photo's own pixel scale.
+    const int size = 256;
+    const auto result = test::run_command("cd " + test::shell_quote(dir) + " && oslc generated.osl && testshade -g " +
+                                          std::to_string(size) + " " + std::to_string(size) +
+                                          " --param Scale 0.5 -od float -o Color osl.exr stochtex_test");
+    ASSERT_EQ(result.status, 0) << result.output;
+    const Image osl_image = read_image_linear(dir + "/osl.exr");
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.units_per_pixel = 0.5 / size;
+    const Image core_image = render(*make_texture(description), settings);
+    const ComparisonReport report = compare_images(core_image, osl_image);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(report.mean_test[c], report.mean_reference[c], 0.05 * report.stddev_reference[c] + 1e-3) << format_report(report);
+        EXPECT_LT(report.w1_relative[c], 0.1) << format_report(report);
+    }
+}
+
+}  // namespace
