@@ -20,6 +20,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "median_reporter.h"
+
 #ifdef STOCHTEX_HAVE_LIBNOISE
 #include <libnoise/noise.h>
 #endif
@@ -178,43 +180,31 @@ void bm_render(benchmark::State& state, const Model* model, bool solid, int thre
 
 // ---- Comparison of the medians -------------------------------------------------------------------
 
-class ComparingReporter : public benchmark::ConsoleReporter {
+class ComparingReporter : public stochtex::bench::MedianReporter {
 public:
-    using ConsoleReporter::ConsoleReporter;
-
-    void ReportRuns(const std::vector<Run>& reports) override
-    {
-        ConsoleReporter::ReportRuns(reports);
-        for (const Run& run : reports) {
-            if (run.error_occurred || (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median")) continue;
-            for (const char* unit : {"Meval/s", "Mpix/s"}) {
-                const auto counter = run.counters.find(unit);
-                if (counter != run.counters.end()) rates_[run.run_name.str()] = counter->second.value;
-            }
-        }
-    }
+    explicit ComparingReporter(OutputOptions options) : MedianReporter({"Meval/s", "Mpix/s"}, options) {}
 
     void Finalize() override
     {
         ConsoleReporter::Finalize();
-        auto find = [&](const std::string& prefix) -> double {
-            for (const auto& [name, rate] : rates_)
-                if (name.rfind(prefix, 0) == 0) return rate;
-            return 0;
+        auto rate_of = [&](const std::string& prefix) {
+            const Entry* entry = find(prefix);
+            return entry ? entry->rate : 0.0;
         };
         std::printf("\nComparison (medians of this run):\n");
-        for (const auto& [name, rate] : rates_) {
+        for (const auto& [name, entry] : medians()) {
+            const double rate = entry.rate;
             std::printf("  %-44s %8.3f", name.c_str(), rate);
             if (name.rfind("Noise/", 0) == 0) {
                 const bool isotropic = name.find("isotropic") != std::string::npos && name.find("anisotropic") == std::string::npos;
-                const double plain = find(std::string("Ref/PlainSum3D/") + (isotropic ? "isotropic" : "anisotropic"));
-                const double perlin = find("Ref/Perlin3D");
+                const double plain = rate_of(std::string("Ref/PlainSum3D/") + (isotropic ? "isotropic" : "anisotropic"));
+                const double perlin = rate_of("Ref/Perlin3D");
                 if (plain > 0) std::printf("  %6.2fx plain kernel sum (3D)", rate / plain);
                 if (perlin > 0) std::printf("  %6.3fx Perlin", rate / perlin);
             }
             if (name.rfind("Texture/gabor", 0) == 0) {
                 const std::string twin = "Texture/wavelet" + name.substr(std::strlen("Texture/gabor"));
-                const double wavelet = find(twin);
+                const double wavelet = rate_of(twin);
                 if (wavelet > 0) std::printf("  %6.3fx wavelet (same raster, threads)", rate / wavelet);
             }
             std::printf("\n");
@@ -222,8 +212,6 @@ public:
         std::fflush(stdout);
     }
 
-private:
-    std::map<std::string, double> rates_;
 };
 
 bool console_format(int argc, char** argv)

@@ -26,6 +26,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "median_reporter.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -179,17 +181,10 @@ void ring_comparison()
 
 // ---- After the table: lrp vs wavelet -------------------------------------------------------
 
-class ComparisonReporter : public benchmark::ConsoleReporter {
+class ComparisonReporter : public stochtex::bench::MedianReporter {
 public:
-    void ReportRuns(const std::vector<Run>& runs) override
-    {
-        ConsoleReporter::ReportRuns(runs);
-        for (const Run& run : runs) {
-            const auto rate = run.counters.find("Mpix/s");
-            const bool median = run.run_type != Run::RT_Aggregate || run.aggregate_name == "median";
-            if (rate != run.counters.end() && median && !run.error_occurred) medians_[run.run_name.str()] = rate->second.value;
-        }
-    }
+    ComparisonReporter() : MedianReporter({"Mpix/s"}) {}
+
     void Finalize() override
     {
         ConsoleReporter::Finalize();
@@ -197,16 +192,15 @@ public:
         for (int threads : {1, 2}) {
             const std::string suffix = "/threads:" + std::to_string(threads);
             double wavelet = 0;
-            for (const auto& [name, rate] : medians_)
-                if (name.find("wavelet") != std::string::npos && name.find(suffix) != std::string::npos) wavelet = rate;
-            for (const auto& [name, rate] : medians_)
+            for (const auto& [name, entry] : medians())
+                if (name.find("wavelet") != std::string::npos && name.find(suffix) != std::string::npos) wavelet = entry.rate;
+            for (const auto& [name, entry] : medians())
                 if (name.find("lrp") != std::string::npos && name.find(suffix) != std::string::npos && wavelet > 0)
-                    std::printf("  %-44s %6.2f Mpix/s = %.2fx wavelet (%.2f)\n", name.c_str(), rate, rate / wavelet, wavelet);
+                    std::printf("  %-44s %6.2f Mpix/s = %.2fx wavelet (%.2f)\n", name.c_str(), entry.rate, entry.rate / wavelet,
+                                wavelet);
         }
     }
 
-private:
-    std::map<std::string, double> medians_;
 };
 
 }  // namespace

@@ -20,6 +20,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "median_reporter.h"
+
 #ifdef STOCHTEX_HAVE_LIBNOISE
 #include <libnoise/noise.h>
 #endif
@@ -290,22 +292,9 @@ void bm_perlin3d(benchmark::State& state, int octaves)
 // ---------------------------------------------------------------------------------------------
 // Console output plus a comparison of the medians at the end.
 
-class ComparingReporter : public benchmark::ConsoleReporter {
+class ComparingReporter : public stochtex::bench::MedianReporter {
 public:
-    using ConsoleReporter::ConsoleReporter;
-
-    void ReportRuns(const std::vector<Run>& reports) override
-    {
-        ConsoleReporter::ReportRuns(reports);
-        for (const Run& run : reports) {
-            if (run.error_occurred) continue;
-            // Medians when there are repetitions, else the single run.
-            if (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median") continue;
-            const auto counter = run.counters.find("Mpix/s");
-            if (counter == run.counters.end()) continue;
-            rates_[run.run_name.str()] = {counter->second.value, run.report_label};
-        }
-    }
+    explicit ComparingReporter(OutputOptions options) : MedianReporter({"Mpix/s"}, options) {}
 
     void Finalize() override
     {
@@ -313,9 +302,9 @@ public:
         const Entry* bilinear = find("Ref/BilinearBaked");
         const Entry* perlin = find("Ref/Perlin3D");
         int width = 34;
-        for (const auto& [name, entry] : rates_) width = std::max(width, int(name.size()));
+        for (const auto& [name, entry] : medians()) width = std::max(width, int(name.size()));
         bool header = false;
-        for (const auto& [name, entry] : rates_) {
+        for (const auto& [name, entry] : medians()) {
             if (name.rfind("Render", 0) != 0) continue;
             if (!header) {
                 std::printf("\nComparison (median Mpix/s of this run; x = speed relative to the reference):\n");
@@ -331,18 +320,6 @@ public:
         std::fflush(stdout);
     }
 
-private:
-    struct Entry {
-        double rate = 0;  // Mpix/s
-        std::string label;
-    };
-    const Entry* find(const std::string& prefix) const
-    {
-        for (const auto& [name, entry] : rates_)
-            if (name.rfind(prefix, 0) == 0) return &entry;
-        return nullptr;
-    }
-    std::map<std::string, Entry> rates_;
 };
 
 bool console_format(int argc, char** argv)
