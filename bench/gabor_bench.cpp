@@ -11,12 +11,14 @@
 //
 // Run: build/bench/gabor_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // A comparison of the medians (x = speed relative to the plain sum and to Perlin) follows the table.
-#include "gabor_noise.h"
+#include "models/gabor/gabor_noise.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/render.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/wavelet_parameters.h>
+#include <stochtex/models/gabor_parameters.h>
 
 #include <benchmark/benchmark.h>
 
@@ -173,8 +175,8 @@ void bm_render(benchmark::State& state, const Model* model, bool solid, int thre
     }
     set_rate(state, "Mpix/s", double(grid) * grid);
     const auto& d = model->description;
-    const std::size_t octaves = d.gabor ? d.gabor->frequencies.size() : d.wavelet->band_weights[0].size();
-    state.SetLabel(d.model + (solid ? " solid" : " 2D") + ", " + std::to_string(octaves) + (d.gabor ? " octaves" : " bands") +
+    const std::size_t octaves = d.parameters.holds<GaborParameters>() ? d.parameters.get<GaborParameters>().frequencies.size() : d.parameters.get<WaveletParameters>().band_weights[0].size();
+    state.SetLabel(d.model + (solid ? " solid" : " 2D") + ", " + std::to_string(octaves) + (d.parameters.holds<GaborParameters>() ? " octaves" : " bands") +
                    ", RGB, filtered, threads=" + std::to_string(threads));
 }
 

@@ -11,12 +11,13 @@
 //                         sampling, wavelet band clamping, gabor analytic filtering, and a 64×
 //                         supersampled reference of the gabor texture
 //   gabor-<name>.jpg      photo | 2D render | solid slice | the solid on a cube, per exemplar
-#include "gabor_noise.h"
+#include "models/gabor/gabor_noise.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/render.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/gabor_parameters.h>
 
 #include <cmath>
 #include <cstdio>
@@ -163,7 +164,7 @@ TextureDescription single_noise(GaborKind kind, const Vec3& direction, double fr
     g.bandwidth = bandwidth;
     g.frequencies = {frequency_px};
     g.weights = {std::vector<double>{0.15}, std::vector<double>{0.15}, std::vector<double>{0.15}};
-    d.gabor = g;
+    d.parameters = g;
     return d;
 }
 
@@ -286,7 +287,7 @@ void exemplar(const fs::path& out, const std::string& name, const Image& full, G
     // A 384² crop keeps the figures small; the texture is analysed from the whole photo.
     AnalysisOptions options;
     options.model = "gabor";
-    options.gabor_kind = kind;
+    options.model_options = {{"gabor-kind", to_string(kind)}};
     const TextureDescription d = analyze(full, options);
     const auto texture = make_texture(d);
     const int size = 256;
@@ -304,8 +305,8 @@ void exemplar(const fs::path& out, const std::string& name, const Image& full, G
     // The cube spans 2 units; show about a photo width across a face.
     const Image solid = cube(*texture, size, 0.5);
     write_image((out / ("gabor-" + name + ".jpg")).string(), side_by_side({crop, flat, slice, solid}));
-    std::printf("%s: %s, %zu octaves, bandwidth %.2f\n", name.c_str(), to_string(kind), d.gabor->frequencies.size(),
-                d.gabor->bandwidth);
+    std::printf("%s: %s, %zu octaves, bandwidth %.2f\n", name.c_str(), to_string(kind), d.parameters.get<GaborParameters>().frequencies.size(),
+                d.parameters.get<GaborParameters>().bandwidth);
 }
 
 }  // namespace

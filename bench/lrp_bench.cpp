@@ -12,17 +12,19 @@
 // (u, v) plane) with 9J impulses per kernel — the paper's "equal cost" — both rendered, their
 // Welch PSDs compared with the ring, and their time per sample measured in this run.
 // After the table: lrp vs wavelet speed. Run it through bench/run-lrp.sh.
-#include "discrete_spectrum.h"
-#include "gabor_noise.h"
-#include "lrp_fit.h"
-#include "lrp_noise.h"
-#include "lrp_texture.h"
-#include "lrp_window.h"
+#include "models/lrp/discrete_spectrum.h"
+#include "models/gabor/gabor_noise.h"
+#include "models/lrp/lrp_fit.h"
+#include "models/lrp/lrp_noise.h"
+#include "models/lrp/lrp_texture.h"
+#include "models/lrp/lrp_window.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/render.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/gabor_parameters.h>
+#include <stochtex/models/lrp_parameters.h>
 
 #include <benchmark/benchmark.h>
 
@@ -71,9 +73,11 @@ Model make_model(const Image& photo, const std::string& model, int cosines, int 
 {
     AnalysisOptions options;
     options.model = model;
-    options.lrp_cosines = cosines;
-    options.lrp_strata = strata;
-    options.lrp_structure = r;
+    if (model == "lrp") {
+        char share[32];
+        std::snprintf(share, sizeof share, "%g", r);
+        options.model_options = {{"J", std::to_string(cosines)}, {"L", std::to_string(strata)}, {"r", share}};
+    }
     Model result;
     result.description = analyze(photo, options);
     result.texture = make_texture(result.description);

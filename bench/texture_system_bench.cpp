@@ -12,6 +12,7 @@
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -104,7 +105,7 @@ int main(int argc, char** argv)
     stochtex::write_stex(stex, d);
 
     std::printf("texture: concrete_512.png analysed (wavelet, %zu bands), virtual image %dx%d float RGB, 64² tiles\n",
-                d.wavelet->band_weights[0].size(), size, size);
+                d.parameters.get<stochtex::WaveletParameters>().band_weights[0].size(), size, size);
     const auto bake_start = std::chrono::steady_clock::now();
     ImageSpec config;
     config.tile_width = config.tile_height = 64;

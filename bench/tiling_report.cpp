@@ -5,20 +5,20 @@
 //
 // 1. Identities of the moment pyramid (coarsest level = exact moments; level 0 variance 0).
 // 2. Moment estimator errors |μ̂−μ|, |σ̂−σ| (mean and 95th percentile over k×k blocks) against
-//    the brute-force reference (tiling_evaluation.h) at k = 1 … 128 on a 1024² noise pair.
+//    the brute-force reference (models/tiling/tiling_estimator_reference.h) at k = 1 … 128 on a 1024² noise pair.
 // 3. Colour errors ‖Ŝ−S̄‖ for the four ablations (exact/estimated mean × exact/estimated spread)
 //    on a smooth and a saturated colour map and on phasor noise; rows: the paper's method
 //    (one texel estimate, rounded blur level, no covariance), then each improvement added.
 // 4. Flicker under a slow zoom, with and without pre-filtering.
 // 5. LEAN normal-map filtering vs the filtered mean normal, against supersampled shading.
 // Needs ../shared/exemplars for the 1024² inputs (else the committed 512² exemplar is used).
-#include "colour_map_filter.h"
-#include "colour_maps.h"
-#include "normal_map_filter.h"
-#include "phasor_field.h"
-#include "tiling_evaluation.h"
-#include "tiling_exemplar.h"
-#include "tiling_noise.h"
+#include "models/tiling/colour_map_filter.h"
+#include "models/tiling/colour_maps.h"
+#include "models/tiling/normal_map_filter.h"
+#include "models/tiling/phasor_field.h"
+#include "models/tiling/tiling_estimator_reference.h"
+#include "models/tiling/tiling_exemplar.h"
+#include "models/tiling/tiling_noise.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>

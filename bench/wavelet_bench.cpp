@@ -17,6 +17,7 @@
 #include <stochtex/image.h>
 #include <stochtex/render.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <benchmark/benchmark.h>
 
@@ -120,7 +121,7 @@ Exemplar load_exemplar()
 
 int band_count(const stochtex::TextureDescription& description)
 {
-    return description.wavelet ? int(description.wavelet->band_weights[0].size()) : 0;
+    return description.parameters.holds<stochtex::WaveletParameters>() ? int(description.parameters.get<stochtex::WaveletParameters>().band_weights[0].size()) : 0;
 }
 
 std::string histogram_state(const stochtex::TextureDescription& description)

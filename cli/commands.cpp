@@ -7,6 +7,7 @@
 #include <stochtex/describe.h>
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
+#include <stochtex/model.h>
 #include <stochtex/morph.h>
 #include <stochtex/osl/osl_shader.h>
 #include <stochtex/pov/pov_include.h>
@@ -34,6 +35,40 @@ std::pair<int, int> parse_size(const std::string& text, const char* option)
     return {w, h};
 }
 
+std::vector<std::string> analysable_models()
+{
+    std::vector<std::string> names;
+    for (const ModelInfo* model : registered_model_infos())
+        if (model->capabilities.analysis) names.push_back(model->name);
+    return names;
+}
+
+std::string model_option_help()
+{
+    std::string help = "Texture model (stex models: what each can do):";
+    for (const ModelInfo* model : registered_model_infos())
+        if (model->capabilities.analysis) help += "\n  " + model->name + ": " + model->summary + " (" + model->doc + ")";
+    return help;
+}
+
+void AnalyzeCommand::add_model_options(CLI::App& command)
+{
+    // Each option once, with the models that declare it (two models may share a name).
+    std::map<std::string, std::string> help;
+    std::vector<std::string> order;
+    for (const ModelInfo* model : registered_model_infos())
+        for (const ParameterInfo& option : model->analysis_options) {
+            if (!help.count(option.key)) order.push_back(option.key);
+            std::string& text = help[option.key];
+            text += (text.empty() ? "" : "; ") + model->name + ": " + option.doc + " (" + option.range +
+                    (option.unit.empty() ? "" : " " + option.unit) + "; default " + option.default_value + ")";
+        }
+    for (const std::string& key : order) {
+        auto& [value, cli_option] = model_options_[key];
+        cli_option = command.add_option("--" + key, value, help[key]);
+    }
+}
+
 int AnalyzeCommand::run() const
 {
     const auto start = std::chrono::steady_clock::now();
@@ -45,23 +80,10 @@ int AnalyzeCommand::run() const
     options.colour_mode = colour_mode_from_string(colour);
     options.histogram = histogram_mode_from_string(histogram);
     options.histogram_knots = knots;
-    options.psd = psd_estimator_from_string(psd);
     options.max_bands = bands;
-    options.gabor_kind = gabor_kind_from_string(gabor_kind);
-    options.gabor_impulses = impulses;
-    options.gabor_bandwidth = bandwidth;
-    options.tiling_exemplar_size = exemplar_size;
-    options.tiling_exemplar_bits = exemplar_bits;
-    options.lrp_cosines = lrp_cosines;
-    options.lrp_strata = lrp_strata;
-    options.lrp_structure = lrp_structure;
-    options.lrp_placement = lrp_placement == "on";
-    if (lrp_turbulence != "auto") {
-        char* end = nullptr;
-        options.lrp_turbulence = std::strtod(lrp_turbulence.c_str(), &end);
-        if (end == lrp_turbulence.c_str() || *end || !(options.lrp_turbulence >= 0) || !std::isfinite(options.lrp_turbulence))
-            throw Error("--turbulence: expected auto or a non-negative number of pixels, got '" + lrp_turbulence + "'");
-    }
+    // Only what the user gave: the model checks it (and names options it does not have).
+    for (const auto& [key, given] : model_options_)
+        if (given.second->count() > 0) options.model_options.emplace_back(key, given.first);
     options.seed = seed;
     options.unit_size_m = unit_size_m;
     options.source_name = std::filesystem::path(photo).filename().string();
@@ -108,6 +130,29 @@ int RenderCommand::run() const
     write_image(output, image);
     std::printf("wrote %s (%dx%d, %s, %.1f Mpixel/s)\n", output.c_str(), image.width, image.height,
                 solid ? "solid slice" : "2D", image.pixel_count() / seconds * 1e-6);
+    return 0;
+}
+
+int ModelsCommand::run() const
+{
+    if (json) {
+        std::fputs(models_json().c_str(), stdout);
+        return 0;
+    }
+    for (const ModelInfo* model : registered_model_infos()) {
+        if (markdown) {
+            std::printf("### %s\n\n%s", model->name.c_str(), parameter_table_markdown(*model).c_str());
+            continue;
+        }
+        const ModelCapabilities& c = model->capabilities;
+        std::string can;
+        for (const auto& [has, word] : std::initializer_list<std::pair<bool, const char*>>{
+                 {c.analysis, "analyze"}, {c.solid, "solid"}, {c.morph, "morph"}, {c.pov_procedural, "pov-procedural"},
+                 {c.osl, "osl"}, {c.light_direction, "light"}, {c.gaussian_channels, "gaussian-channels"}})
+            if (has) can += (can.empty() ? "" : ", ") + std::string(word);
+        std::printf("%-8s %s\n         can: %s; %s\n", model->name.c_str(), model->summary.c_str(),
+                    can.empty() ? "render" : can.c_str(), model->doc.c_str());
+    }
     return 0;
 }
 

@@ -5,25 +5,39 @@
 
 #include <stochtex/analysis.h>
 
+#include <CLI/CLI.hpp>
+
 #include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace stex_cli {
 
 struct AnalyzeCommand {
     std::string photo, output;
-    std::string model = "wavelet", colour = "pca", histogram = "auto", psd = "periodic";
+    std::string model = "wavelet", colour = "pca", histogram = "auto";
     std::string colour_space;  // empty: what the file says, else sRGB
     int knots = 10;
     int bands = 0;
-    std::string gabor_kind = "isotropic";
-    double impulses = 16, bandwidth = 0;  // gabor; bandwidth 0: fitted
-    int exemplar_size = 256, exemplar_bits = 8;  // tiling
-    int lrp_cosines = 50, lrp_strata = 8;  // lrp: J, L
-    double lrp_structure = 0.1;            // lrp: r
-    std::string lrp_placement = "on", lrp_turbulence = "auto";
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;
+    /// Adds every registered model's declared analysis options (--psd, --impulses, --J, …).
+    void add_model_options(CLI::App& command);
+    int run() const;
+
+private:
+    /// Per declared option name: its value and the CLI11 option (to tell whether it was given).
+    std::map<std::string, std::pair<std::string, CLI::Option*>> model_options_;
+};
+
+/// Names of the registered models that analyse photos, and the --model help built from them.
+std::vector<std::string> analysable_models();
+std::string model_option_help();
+
+struct ModelsCommand {
+    bool json = false, markdown = false;
     int run() const;
 };
 

@@ -27,53 +27,19 @@ int main(int argc, char** argv)
     auto* a = app.add_subcommand("analyze", "Analyse a texture photo into a .stex procedural texture");
     a->add_option("photo", analyze.photo, "Photo of a stochastic texture (any format OpenImageIO reads)")->required();
     a->add_option("-o,--output", analyze.output, "Output .stex file")->required();
-    a->add_option("--model", analyze.model,
-                  "Texture model: wavelet (isotropic, 2D and solid) or gabor (random-phase Gabor octaves: solid, sliced "
-                  "and analytically filtered, optionally oriented; docs/models/gabor.md) or tiling (tiling and blending of "
-                  "an exemplar crop stored in the .stex, moment-filtered; docs/models/tiling.md) or lrp (local random-phase "
-                  "noise: any spectrum, anisotropic too, plus structure by fixed phases; docs/models/lrp.md)")
-        ->check(CLI::IsMember({"wavelet", "gabor", "tiling", "lrp"}))->capture_default_str();
+    // Models and their own options come from the registry: each model's declared options
+    // (name, range, default, doc) become options here, and the core checks their values.
+    a->add_option("--model", analyze.model, model_option_help())
+        ->check(CLI::IsMember(analysable_models()))->capture_default_str();
     a->add_option("--colour", analyze.colour, "Colour mode: pca (decorrelated), rgb (independent), rgb-shared")
         ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))->capture_default_str();
     a->add_option("--histogram", analyze.histogram,
                   "Histogram matching: on, off, or auto (per channel, when it brings the histogram measurably closer)")
         ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
     a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
-    a->add_option("--psd", analyze.psd, "Power spectrum estimator: periodic (paper; default, chosen by measurement) or periodic-smooth (Moisan, no edge leak on non-tileable photos)")
-        ->check(CLI::IsMember({"periodic-smooth", "periodic"}))->capture_default_str();
-    a->add_option("--gabor-kind", analyze.gabor_kind,
-                  "gabor: isotropic (frequencies on a sphere; solid slices alike in every direction), anisotropic (one "
-                  "orientation, measured from the photo: wood, brushed metal) or hybrid (frequencies in the (u, v) plane)")
-        ->check(CLI::IsMember({"isotropic", "anisotropic", "hybrid"}))->capture_default_str();
-    a->add_option("--impulses", analyze.impulses, "gabor: impulses per kernel (quality vs speed; ~16 looks Gaussian)")
-        ->check(CLI::Range(1.0, 256.0))->capture_default_str();
-    a->add_option("--bandwidth", analyze.bandwidth,
-                  "gabor: kernel bandwidth relative to its frequency, 0.0625 to 16 (0: chosen by the fit)")
-        ->check(CLI::Range(0.0, 16.0))->capture_default_str();
     a->add_option("--bands", analyze.bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();
-    a->add_option("--exemplar-size", analyze.exemplar_size,
-                  "tiling: largest exemplar side; the exemplar is the photo's centred crop, sides powers of two (16 to 1024)")
-        ->check(CLI::Range(16, 1024))->capture_default_str();
-    a->add_option("--exemplar-bits", analyze.exemplar_bits, "tiling: bits per stored exemplar sample (8 or 16)")
-        ->check(CLI::IsMember({8, 16}))->capture_default_str();
-    a->add_option("--J", analyze.lrp_cosines,
-                  "lrp: cosine budget J per window over all strata and the structure (cost: about 9(J + L) sine/cosine "
-                  "and window evaluations per sample)")
-        ->check(CLI::Range(1, 256))->capture_default_str();
-    a->add_option("--L", analyze.lrp_strata, "lrp: random-phase strata of equal energy (the paper's 4 measured worse than 8)")
-        ->check(CLI::Range(1, 16))->capture_default_str();
-    a->add_option("--r", analyze.lrp_structure,
-                  "lrp: share of the spectrum's energy reproduced with the photo's own phases (structure), 0 to 0.95; "
-                  "0: noise by example only")
-        ->check(CLI::Range(0.0, 0.95))->capture_default_str();
-    a->add_option("--placement", analyze.lrp_placement,
-                  "lrp: random placement of the structure (breaks its periodicity; blocks of half a crop, cross-faded)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    a->add_option("--turbulence", analyze.lrp_turbulence,
-                  "lrp: turbulence of the structure, standard deviation of the displacement in photo pixels, or auto "
-                  "(a tenth of the structure's mean wavelength)")
-        ->capture_default_str();
+    analyze.add_model_options(*a);
     a->add_option("--seed", analyze.seed, "Seed stored in the texture")->capture_default_str();
     a->add_option("--colourspace,--colorspace", analyze.colour_space,
                   "Colour space of the photo's values (default: what the file says, else sRGB)");
@@ -150,6 +116,11 @@ int main(int argc, char** argv)
     p->add_option("--bake-size", pov.bake_size, "Baked mode: texels per side, 16 to 8192 (0: one texture unit at the photo's pixel scale, at most 2048)")
         ->check(CLI::Range(0, 8192))->capture_default_str();
 
+    ModelsCommand models;
+    auto* ml = app.add_subcommand("models", "List the texture models: what each is for, what it can do, its parameters");
+    ml->add_flag("--json", models.json, "Machine-readable: the registry as JSON (name, summary, capabilities, parameters, options)");
+    ml->add_flag("--markdown", models.markdown, "Each model's .stex parameter table, as in docs/stex-format.md");
+
     const PtmCommands ptm(app);
     const TilingCommands tiling(app);
 
@@ -160,7 +131,7 @@ int main(int argc, char** argv)
     }
     set_progress_lines(progress_lines);
     if (app.get_subcommands().empty()) {
-        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, ptm, tiling); see stex --help\n");
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, ptm, tiling); see stex --help\n");
         return 1;
     }
     try {
@@ -172,6 +143,7 @@ int main(int argc, char** argv)
         if (*p) return pov.run();
         if (*b) return bake.run();
         if (*o) return osl.run();
+        if (*ml) return models.run();
         if (ptm.selected()) return ptm.run();
         if (tiling.selected()) return tiling.run();
     } catch (const std::exception& e) {

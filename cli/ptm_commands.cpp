@@ -11,6 +11,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/ptm_parameters.h>
 
 #include <algorithm>
 #include <chrono>
@@ -273,7 +274,7 @@ int PtmCommands::Options::run_fit() const
 int PtmCommands::Options::run_synthesize() const
 {
     const TextureDescription exemplar = read_stex(input);
-    if (!exemplar.ptm) throw Error(input + ": not a ptm texture (model '" + exemplar.model + "')");
+    if (!exemplar.parameters.holds<PtmParameters>()) throw Error(input + ": not a ptm texture (model '" + exemplar.model + "')");
     PtmSynthesisOptions options;
     std::tie(options.width, options.height) = parse_size(size, "--size");
     options.block = block;
@@ -285,10 +286,10 @@ int PtmCommands::Options::run_synthesize() const
     options.seed = seed;
     options.brute_force = search == "exhaustive";
     PtmSynthesisReport report;
-    const PtmMaps maps = synthesize_ptm(*exemplar.ptm->maps, options, &report, terminal_progress_bar());
-    TextureDescription description = make_ptm_description(maps, exemplar.ptm->light);
+    const PtmMaps maps = synthesize_ptm(*exemplar.parameters.get<PtmParameters>().maps, options, &report, terminal_progress_bar());
+    TextureDescription description = make_ptm_description(maps, exemplar.parameters.get<PtmParameters>().light);
     description.seed = seed;
-    description.provenance = ptm_provenance(input, exemplar.ptm->maps->width(), exemplar.ptm->maps->height(), "linear",
+    description.provenance = ptm_provenance(input, exemplar.parameters.get<PtmParameters>().maps->width(), exemplar.parameters.get<PtmParameters>().maps->height(), "linear",
                                             {{"command", "ptm synthesize"}, {"block", std::to_string(block)},
                                              {"overlap", std::to_string(overlap)}, {"seam", seam},
                                              {"tileable", tileable ? "yes" : "no"}, {"seed", std::to_string(seed)}});
@@ -306,7 +307,7 @@ int PtmCommands::Options::run_synthesize() const
     if (!verify) return 0;
     options.brute_force = !options.brute_force;
     PtmSynthesisReport other;
-    const PtmMaps again = synthesize_ptm(*exemplar.ptm->maps, options, &other, terminal_progress_bar());
+    const PtmMaps again = synthesize_ptm(*exemplar.parameters.get<PtmParameters>().maps, options, &other, terminal_progress_bar());
     const bool identical = again.coefficients.pixels == maps.coefficients.pixels;
     const PtmSynthesisReport& exhaustive = options.brute_force ? other : report;
     const PtmSynthesisReport& projection = options.brute_force ? report : other;
@@ -334,8 +335,8 @@ int PtmCommands::Options::run_relight() const
     if (compare && directions.size() != truth.directions.size())
         throw Error("--compare: give the lights through --lights-from only");
     RenderSettings settings;
-    settings.width = description.ptm->maps->width();
-    settings.height = description.ptm->maps->height();
+    settings.width = description.parameters.get<PtmParameters>().maps->width();
+    settings.height = description.parameters.get<PtmParameters>().maps->height();
     if (!render_size.empty()) std::tie(settings.width, settings.height) = parse_size(render_size, "--size");
     settings.units_per_pixel = scale / description.pixels_per_unit;
     Image strip(settings.width * int(directions.size()), settings.height, 3);
@@ -358,8 +359,8 @@ int PtmCommands::Options::run_export_maps() const
     if (normal_output.empty() && albedo_output.empty() && reference_normals.empty() && reference_albedo.empty())
         throw Error("export-maps: give --normal and/or --albedo (or a reference to measure against)");
     const TextureDescription description = read_stex(input);
-    if (!description.ptm) throw Error(input + ": not a ptm texture (model '" + description.model + "')");
-    const SurfaceMaps maps = estimate_surface_maps(*description.ptm->maps, normal_estimator_from_string(estimator));
+    if (!description.parameters.holds<PtmParameters>()) throw Error(input + ": not a ptm texture (model '" + description.model + "')");
+    const SurfaceMaps maps = estimate_surface_maps(*description.parameters.get<PtmParameters>().maps, normal_estimator_from_string(estimator));
     if (!normal_output.empty()) write_normal_map(normal_output, maps.normals);
     if (!albedo_output.empty()) write_image(albedo_output, maps.albedo);
     if (!reference_normals.empty()) {
@@ -418,7 +419,7 @@ int PtmCommands::Options::run_unbounded() const
                                                                std::to_string(seed) +
                                                                (already_periodic ? "" : ", periodic component")});
     write_stex(output, description);
-    const PtmMaps& maps = *description.ptm->maps;
+    const PtmMaps& maps = *description.parameters.get<PtmParameters>().maps;
     std::printf("wrote %s: %dx%d texels of %s maps%s, tiled and blended over triangles of %.1f texels (seed %u)\n",
                 output.c_str(), maps.width(), maps.height(), to_string(maps.colour),
                 already_periodic ? "" : " (periodic component)", triangle_edge * std::min(maps.width(), maps.height()),

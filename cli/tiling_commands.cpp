@@ -7,6 +7,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/tiling.h>
+#include <stochtex/models/tiling_parameters.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -40,7 +41,7 @@ void add_source_options(CLI::App* command, TilingSourceOptions& source)
 void write(const std::string& path, const TextureDescription& description)
 {
     write_stex(path, description);
-    std::printf("wrote %s (tiling, output %s, %zu bytes)\n", path.c_str(), to_string(description.tiling->output),
+    std::printf("wrote %s (tiling, output %s, %zu bytes)\n", path.c_str(), to_string(description.parameters.get<TilingParameters>().output),
                 std::size_t(std::filesystem::file_size(path)));
 }
 

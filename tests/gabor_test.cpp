@@ -5,13 +5,13 @@
 // edge, the by-example fit with its slice correction, periodic form, determinism.
 #include "test_support.h"
 
-#include "gabor_fit.h"
-#include "gabor_kernel.h"
-#include "gabor_noise.h"
-#include "gabor_statistics.h"
-#include "gabor_texture.h"
-#include "gaussian.h"
-#include "random.h"
+#include "models/gabor/gabor_fit.h"
+#include "models/gabor/gabor_kernel.h"
+#include "models/gabor/gabor_noise.h"
+#include "models/gabor/gabor_statistics.h"
+#include "models/gabor/gabor_texture.h"
+#include "colour/gaussian.h"
+#include "numerics/random.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
@@ -19,6 +19,8 @@
 #include <stochtex/mip_image.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
+#include <stochtex/models/gabor_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -381,7 +383,7 @@ TextureDescription concrete(HistogramMode histogram, int octaves = 0, GaborKind 
     options.model = "gabor";
     options.histogram = histogram;
     options.max_bands = octaves;
-    options.gabor_kind = kind;
+    options.model_options = {{"gabor-kind", to_string(kind)}};
     return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
 }
 
@@ -393,8 +395,8 @@ TEST(GaborTexture, SynthesisMatchesThePhotoStatistics)
     // against the photo (PSD per channel, colour covariance, mean), and σ_M² = channel variance.
     const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
     const TextureDescription d = concrete(HistogramMode::automatic);
-    ASSERT_TRUE(d.gabor.has_value());
-    EXPECT_EQ(d.gabor->frequencies.size(), 8u);
+    ASSERT_TRUE(d.parameters.holds<GaborParameters>());
+    EXPECT_EQ(d.parameters.get<GaborParameters>().frequencies.size(), 8u);
     RenderSettings settings;
     settings.width = settings.height = 512;
     settings.units_per_pixel = 1.0 / d.pixels_per_unit;
@@ -449,7 +451,7 @@ TEST(GaborTexture, SliceCorrectionRemovesTheLowFrequencyExcessOfSolidSlices)
         rings.frequencies.push_back(0.3 * std::ldexp(1.0, -k));
         for (auto& w : rings.weights) w.push_back(0.05);
     }
-    broadband.gabor = rings;
+    broadband.parameters = rings;
     constexpr int size = 512;
     RenderSettings settings;
     settings.width = settings.height = size;
@@ -687,7 +689,7 @@ TEST(GaborTexture, ContinuousAcrossACubeEdge)
     const Vec3 n_a{1, 0, 0}, n_b{0, 1, 0};
     const double sigma = std::sqrt(0.0 + [&] {
         double sum = 0;
-        for (double w : d.gabor->weights[0]) sum += w * w;
+        for (double w : d.parameters.get<GaborParameters>().weights[0]) sum += w * w;
         return sum;
     }());
     SplitMix64 rng(31);
@@ -830,21 +832,21 @@ TEST(GaborStexFile, RoundTripAndErrorsNameTheField)
         }
         return std::string("no error");
     };
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->direction = {1, 1, 0}; }),
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().direction = {1, 1, 0}; }),
               "t.stex: parameters.direction: must be a unit vector (length within 1e-04 of 1), its length is 1.4142135623730951");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->bandwidth = 0; }), "t.stex: parameters.bandwidth: must be in [0.0625, 16], got 0");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->impulses_per_kernel = 1000; }),
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().bandwidth = 0; }), "t.stex: parameters.bandwidth: must be in [0.0625, 16], got 0");
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().impulses_per_kernel = 1000; }),
               "t.stex: parameters.impulses_per_kernel: must be in [1, 256], got 1000");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->frequencies[2] = 2; }), "t.stex: parameters.frequencies[2]: must be in [1e-06, 1], got 2");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->frequencies.clear(); }), "t.stex: parameters.frequencies: expected 1 to 24 octaves, got 0");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->weights[1].pop_back(); }),
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().frequencies[2] = 2; }), "t.stex: parameters.frequencies[2]: must be in [1e-06, 1], got 2");
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().frequencies.clear(); }), "t.stex: parameters.frequencies: expected 1 to 24 octaves, got 0");
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().weights[1].pop_back(); }),
               "t.stex: parameters.weights[1]: has 3 weights but frequencies has 4 octaves");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->weights[2][0] = -1; }),
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().weights[2][0] = -1; }),
               "t.stex: parameters.weights[2][0]: weights must not be negative, got -1");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor->weights[0][3] = NAN; }),
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.get<GaborParameters>().weights[0][3] = NAN; }),
               "t.stex: parameters.weights[0][3]: expected a finite number within float range, got nan");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.gabor.reset(); }), "t.stex: parameters: missing for model 'gabor'");
-    EXPECT_EQ(error_of([](TextureDescription& t) { t.wavelet = WaveletParameters{}; }), "t.stex: parameters: wavelet parameters given for model 'gabor'");
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters.reset(); }), "t.stex: parameters: missing for model 'gabor'");
+    EXPECT_EQ(error_of([](TextureDescription& t) { t.parameters = WaveletParameters{}; }), "t.stex: parameters: wavelet parameters given for model 'gabor'");
     auto parse_error = [&](const std::string& from, const std::string& to) {
         std::string edited = text;
         const std::size_t at = edited.find(from);
@@ -925,9 +927,9 @@ TEST(GaborCli, AnalyzeInfoRenderSolidTileableAndMorph)
     run("render " + test::shell_quote(a) + " -o " + test::shell_quote(dir + "/t.exr") + " --size 64x64 --tileable");
     run("morph " + test::shell_quote(a) + " " + test::shell_quote(b) + " --t 0.25 -o " + test::shell_quote(dir + "/m.stex"));
     const TextureDescription m = read_stex(dir + "/m.stex");
-    ASSERT_TRUE(m.gabor.has_value());
-    EXPECT_EQ(m.gabor->frequencies.size(), 5u);  // b's missing octave has weight 0
-    EXPECT_NEAR(m.gabor->impulses_per_kernel, 13, 1e-6);
+    ASSERT_TRUE(m.parameters.holds<GaborParameters>());
+    EXPECT_EQ(m.parameters.get<GaborParameters>().frequencies.size(), 5u);  // b's missing octave has weight 0
+    EXPECT_NEAR(m.parameters.get<GaborParameters>().impulses_per_kernel, 13, 1e-6);
     const test::CommandResult bad =
         test::run_command(cli + " analyze " + photo + " -o " + test::shell_quote(dir + "/x.stex") + " --model gabor --bandwidth 0.01 2>&1");
     EXPECT_EQ(bad.status, 1);

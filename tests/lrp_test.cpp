@@ -6,15 +6,15 @@
 #include "region_check.h"
 #include "test_support.h"
 
-#include "discrete_spectrum.h"
-#include "lrp_fit.h"
-#include "lrp_structure_fit.h"
-#include "lrp_noise.h"
-#include "lrp_parameters.h"
-#include "lrp_texture.h"
-#include "lrp_window.h"
-#include "colour_basis.h"
-#include "random.h"
+#include "models/lrp/discrete_spectrum.h"
+#include "models/lrp/lrp_fit.h"
+#include "models/lrp/lrp_structure_fit.h"
+#include "models/lrp/lrp_noise.h"
+#include "models/lrp/lrp_parameters.h"
+#include "models/lrp/lrp_texture.h"
+#include "models/lrp/lrp_window.h"
+#include "colour/colour_basis.h"
+#include "numerics/random.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
@@ -22,6 +22,7 @@
 #include <stochtex/metrics.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/lrp_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -39,7 +40,7 @@ TextureDescription noise_description(const LrpParameters& parameters, double pix
     d.model = "lrp";
     d.colour_mode = ColourMode::rgb;
     d.pixels_per_unit = pixels_per_unit;
-    d.lrp = parameters;
+    d.parameters = parameters;
     return d;
 }
 
@@ -200,9 +201,10 @@ TextureDescription analyse_lrp(const Image& photo, double r, int cosines = 50, b
 {
     AnalysisOptions options;
     options.model = "lrp";
-    options.lrp_structure = r;
-    options.lrp_cosines = cosines;
-    options.lrp_turbulence = turbulence;
+    char share[32], sigma[32];
+    std::snprintf(share, sizeof share, "%.17g", r);
+    std::snprintf(sigma, sizeof sigma, "%.17g", turbulence);
+    options.model_options = {{"r", share}, {"J", std::to_string(cosines)}, {"turbulence", turbulence < 0 ? "auto" : sigma}};
     options.histogram = histograms ? HistogramMode::on : HistogramMode::off;
     return analyze(photo, options);
 }
@@ -260,7 +262,7 @@ TEST(LrpByExample, SpectrumAndStrataEnergyOnThreePhotos)
         fit.structure_fraction = 0;
         fit_lrp(decorrelate(photo, basis), photo.width, photo.height, d.basis, fit, &report);
         const Image image = render_at_photo_scale(d, 1024);
-        const DiscreteSpectrum measured = welch_psd(decorrelated_channel(image, d, 0), 1024, 1024, d.lrp->spectrum_size);
+        const DiscreteSpectrum measured = welch_psd(decorrelated_channel(image, d, 0), 1024, 1024, d.parameters.get<LrpParameters>().spectrum_size);
         const double distance = radial_log_spectrum_distance_db(measured, report.channel_spectra[0]);
         const std::vector<double> ratios = energy_ratios(measured, report.channel_spectra[0], report.stratum_of_bin);
         std::printf("%-13s radial log-PSD distance %.2f dB; stratum energy ratios", name, distance);
@@ -285,7 +287,7 @@ TEST(LrpStructure, ResemblanceGrowsWithRWithoutSeams)
     double previous = -1, first = 0;
     for (double r : {0.0, 0.1, 0.2}) {
         const TextureDescription d = analyse_lrp(photo, r, 50, false, 0);
-        const int size = d.lrp->spectrum_size, render_size = 4 * size, cell = size / 2;
+        const int size = d.parameters.get<LrpParameters>().spectrum_size, render_size = 4 * size, cell = size / 2;
         const Image image = render_at_photo_scale(d, render_size);
         const std::vector<float> synthesis = decorrelated_channel(image, d, 0);
         const std::vector<float> source = decorrelated_channel(photo, d, 0);
@@ -416,7 +418,7 @@ TEST(LrpTexture, PeriodicFormRepeatsOrSaysWhyItCannot)
     }
     // Without structure any period works (down to 3 lattice cells per stratum).
     TextureDescription noise = d;
-    noise.lrp->structure.reset();
+    noise.parameters.get<LrpParameters>().structure.reset();
     const auto small = make_periodic_texture(noise, {100 / d.pixels_per_unit, 60 / d.pixels_per_unit});
     expect_same(small->eval({0.1, 0.2}, {}), small->eval({0.1 + 100 / d.pixels_per_unit, 0.2}, {}), 2e-5, "small period");
 }

@@ -6,6 +6,7 @@
 #include <stochtex/morph.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -40,7 +41,7 @@ TEST(Morph, EndpointsAreExactAndBasisStaysARotation)
             for (int c = 0; c < 3; ++c) u(r, c) = m.basis[r][c];
         EXPECT_NEAR((u.transpose() * u - Eigen::Matrix3d::Identity()).norm(), 0, 1e-9) << "t = " << t;
         EXPECT_NEAR(u.determinant(), 1, 1e-9);
-        EXPECT_EQ(m.wavelet->band_weights[0].size(), a.wavelet->band_weights[0].size());
+        EXPECT_EQ(m.parameters.get<WaveletParameters>().band_weights[0].size(), a.parameters.get<WaveletParameters>().band_weights[0].size());
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(m.mean[c], a.mean[c] + t * (b.mean[c] - a.mean[c]), 1e-12);
         EXPECT_NO_THROW(validate(m, "morph"));
     }

@@ -4,8 +4,9 @@
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
 #include <stochtex/octave_spectrum.h>
+#include <stochtex/models/wavelet_parameters.h>
 
-#include "nonnegative_least_squares.h"
+#include "numerics/nonnegative_least_squares.h"
 
 #include <gtest/gtest.h>
 
@@ -83,7 +84,7 @@ TEST(OctaveSpectrum, WaveletChannelSpectrumHoldsTheChannelVariance)
     TextureDescription d;
     d.model = "wavelet";
     d.pixels_per_unit = 256;
-    d.wavelet = WaveletParameters{{std::vector<double>{0.1, 0.2, 0.3, 0.2, 0.1, 0.05},
+    d.parameters = WaveletParameters{{std::vector<double>{0.1, 0.2, 0.3, 0.2, 0.1, 0.05},
                                    std::vector<double>(6, 0.1), std::vector<double>(6, 0.0)}};
     const OctaveSpectrum s = channel_spectrum(d, 0);
     const double sigma = channel_sigma(d, 0);
@@ -104,7 +105,7 @@ TEST(ChannelMap, PolylineStaysWithinTolerance)
 {
     TextureDescription d;
     d.model = "wavelet";
-    d.wavelet = WaveletParameters{{std::vector<double>{0.2, 0.1}, std::vector<double>{0.1, 0.1}, std::vector<double>{0.1, 0.0}}};
+    d.parameters = WaveletParameters{{std::vector<double>{0.2, 0.1}, std::vector<double>{0.1, 0.1}, std::vector<double>{0.1, 0.0}}};
     // A skewed, monotone map on 10 knots (as analysis writes them).
     for (int k = 0; k < 10; ++k) {
         const double z = -3 + 6.0 * k / 9;

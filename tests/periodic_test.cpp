@@ -4,8 +4,8 @@
 #include "region_check.h"
 #include "test_support.h"
 
-#include "random.h"
-#include "wavelet_noise.h"
+#include "numerics/random.h"
+#include "models/wavelet/wavelet_noise.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>

@@ -5,13 +5,14 @@
 // with a message naming the file.
 #include "test_support.h"
 
-#include "band_filter.h"
-#include "wavelet_noise.h"
+#include "models/wavelet/band_filter.h"
+#include "models/wavelet/wavelet_noise.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/mip_image.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
@@ -346,7 +347,7 @@ TEST(PluginTextureSystem, ChoosesTheMipLevelADerivativeAsksFor)
 std::array<double, 3> predicted_rgb_variance(const TextureDescription& d, double footprint_px)
 {
     std::array<double, 3> channel{};
-    const auto& weights = d.wavelet->band_weights;
+    const auto& weights = d.parameters.get<WaveletParameters>().band_weights;
     for (int c = 0; c < 3; ++c)
         for (std::size_t j = 0; j < weights[c].size(); ++j) {
             const double fade = band_fade(int(j), footprint_px);

@@ -8,6 +8,7 @@
 #include <stochtex/error.h>
 #include <stochtex/ptm.h>
 #include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm_parameters.h>
 
 #include <gtest/gtest.h>
 

@@ -3,10 +3,10 @@
 // closed-form leave-one-out equals refitting), the light sidecars' strict parsing, the
 // projection-kernel search (the same candidates as exhaustive search), quilting, the .stex
 // block and its coefficient file, the texture's MIP levels and the light hook.
-#include "legendre_basis.h"
-#include "patch_search.h"
-#include "ptm_functions.h"
-#include "random.h"
+#include "models/ptm/legendre_basis.h"
+#include "models/ptm/patch_search.h"
+#include "models/ptm/ptm_functions.h"
+#include "numerics/random.h"
 #include "test_support.h"
 
 #include <stochtex/error.h>
@@ -16,6 +16,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/ptm_parameters.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -513,15 +514,15 @@ TEST(PtmStex, RoundTripsWithItsCoefficientFile)
     write_stex(path, description);
     ASSERT_TRUE(fs::exists(dir / "rock.ptm.exr"));
     const TextureDescription read = read_stex(path);
-    ASSERT_TRUE(read.ptm);
-    EXPECT_EQ(read.ptm->coefficient_file, "rock.ptm.exr");
-    EXPECT_TRUE(read.ptm->maps->coefficients.pixels == description.ptm->maps->coefficients.pixels);
+    ASSERT_TRUE(read.parameters.holds<PtmParameters>());
+    EXPECT_EQ(read.parameters.get<PtmParameters>().coefficient_file, "rock.ptm.exr");
+    EXPECT_TRUE(read.parameters.get<PtmParameters>().maps->coefficients.pixels == description.parameters.get<PtmParameters>().maps->coefficients.pixels);
     EXPECT_EQ(format_stex(read), format_stex(read_stex(path)));
     // Written again elsewhere: byte-identical text, the maps named after the new file.
     const std::string copy = (dir / "copy.stex").string();
     write_stex(copy, read);
     const TextureDescription read_copy = read_stex(copy);
-    EXPECT_EQ(read_copy.ptm->coefficient_file, "copy.ptm.exr");
+    EXPECT_EQ(read_copy.parameters.get<PtmParameters>().coefficient_file, "copy.ptm.exr");
     auto text = [](const std::string& p) {
         std::ifstream in(p, std::ios::binary);
         return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

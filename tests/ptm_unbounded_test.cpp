@@ -3,10 +3,10 @@
 // any light it is exactly the blend of the source lit at that light; relit under lights that were
 // never photographed it has the source's statistics; it is deterministic, survives a .stex round
 // trip, and minifies to the exact mean.
-#include "ptm_functions.h"
-#include "random.h"
+#include "models/ptm/ptm_functions.h"
+#include "numerics/random.h"
 #include "test_support.h"
-#include "tiling_grid.h"
+#include "blending/tiling_grid.h"
 
 #include <stochtex/lighting.h>
 #include <stochtex/ptm.h>
@@ -14,6 +14,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/ptm_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -89,7 +90,7 @@ TEST(UnboundedPtm, RelitEqualsTheBlendOfTheSourceRelitAtTheSameLight)
 {
     if (!fitted_rock()) GTEST_SKIP() << "../shared/exemplars is absent";
     TextureDescription description = unbounded_rock(7);
-    const PtmMaps& maps = *description.ptm->maps;  // the periodic maps the texture tiles
+    const PtmMaps& maps = *description.parameters.get<PtmParameters>().maps;  // the periodic maps the texture tiles
     const int width = maps.width(), height = maps.height(), channels = maps.coefficients.channels;
     // ν: the maps' mean functions, in double.
     std::array<legendre::Terms, 3> mean{};
@@ -98,7 +99,7 @@ TEST(UnboundedPtm, RelitEqualsTheBlendOfTheSourceRelitAtTheSameLight)
         for (int c = 0; c < 3; ++c)
             for (int k = 0; k < legendre::term_count; ++k) mean[c][k] += f[c][k] / double(maps.coefficients.pixel_count());
     }
-    const TilingGrid grid(description.seed, description.ptm->triangle_edge * std::min(width, height));
+    const TilingGrid grid(description.seed, description.parameters.get<PtmParameters>().triangle_edge * std::min(width, height));
     SplitMix64 rng(3);
     for (const Vec3& light : spiral_light_directions(6, 15, 40)) {
         // The source relit at L: relight() (clamped at 0) and the mean radiance ν·B(L).
@@ -190,8 +191,8 @@ TEST(UnboundedPtm, IsDeterministicAndSurvivesTheStexRoundTrip)
     const std::string dir = test::temp_dir("UnboundedPtmRoundTrip");
     write_stex(dir + "/a.stex", a);
     const TextureDescription read = read_stex(dir + "/a.stex");
-    ASSERT_TRUE(read.ptm->unbounded);
-    EXPECT_NEAR(read.ptm->triangle_edge, a.ptm->triangle_edge, 1e-7);
+    ASSERT_TRUE(read.parameters.get<PtmParameters>().unbounded);
+    EXPECT_NEAR(read.parameters.get<PtmParameters>().triangle_edge, a.parameters.get<PtmParameters>().triangle_edge, 1e-7);
     EXPECT_EQ(read.seed, 5u);
     const Image from_file = render_texels(read, 192, 160);
     for (std::size_t i = 0; i < first.pixels.size(); ++i) ASSERT_NEAR(from_file.pixels[i], first.pixels[i], 1e-5) << i;
@@ -215,7 +216,7 @@ TEST(UnboundedPtm, MinifiesToTheExactMeanAndFiltersLikeTheMipOfItsRaster)
     // lookup is not a box, and the tiles' shifts put their texels anywhere relative to the
     // pyramid's grid. The source texture's own error at such an offset (3.5 texels) is the
     // reference; the unbounded one, whose blend weights also change across the pixel, stays below.
-    TextureDescription bounded = make_ptm_description(*description.ptm->maps, light_direction(description));
+    TextureDescription bounded = make_ptm_description(*description.parameters.get<PtmParameters>().maps, light_direction(description));
     const double unbounded_error = minification_error(description, 0), bounded_error = minification_error(bounded, 3.5);
     std::printf("[ unbounded ] 8-texel footprints vs the box average of the raster: RMS %.2f %% of the mean "
                 "(the source texture, offset 3.5 texels: %.2f %%)\n",

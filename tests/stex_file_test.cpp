@@ -1,7 +1,9 @@
 // .stex reading, writing and validation: canonical round trips, and an Error naming the file and
 // the field (as a JSON path) for every kind of bad input.
 #include <stochtex/error.h>
+#include <stochtex/model.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include "test_support.h"
 
@@ -47,7 +49,7 @@ TextureDescription sample()
     d.histograms[0] = {{-3, -1.5, -0.5, 0, 0.5, 1.5, 3},
                        {-0.5, static_cast<double>(0x1.5c87fap-84f), 0.1, 0.1, 1.0 / 3.0, 0.7, 12.5}};
     d.histograms[2] = {{-2, -1, 1, 2}, {1e-7, 2e-7, 3e-7, 1e10}};
-    d.wavelet = stochtex::WaveletParameters{
+    d.parameters = stochtex::WaveletParameters{
         {{{1, 0.5, 0.25, 0.1, 0}, {0.3, 1e-7, 2, 0.01, 0.5}, {1.0 / 3.0, 2.0 / 3.0, 1, 0, 0}}}};
     d.provenance.source = "brick \"wall\" é.jpg";
     d.provenance.source_width = 1024;
@@ -152,9 +154,9 @@ TEST(StexFile, RoundTripKeepsValuesToFloatPrecision)
             EXPECT_TRUE(same_float(read.histograms[c].z[i], original.histograms[c].z[i]));
             EXPECT_TRUE(same_float(read.histograms[c].value[i], original.histograms[c].value[i]));
         }
-        ASSERT_EQ(read.wavelet->band_weights[c].size(), 5u);
+        ASSERT_EQ(read.parameters.get<stochtex::WaveletParameters>().band_weights[c].size(), 5u);
         for (std::size_t j = 0; j < 5; ++j)
-            EXPECT_TRUE(same_float(read.wavelet->band_weights[c][j], original.wavelet->band_weights[c][j]));
+            EXPECT_TRUE(same_float(read.parameters.get<stochtex::WaveletParameters>().band_weights[c][j], original.parameters.get<stochtex::WaveletParameters>().band_weights[c][j]));
     }
     EXPECT_FALSE(read.histograms[1].enabled());
     EXPECT_EQ(read.provenance.source, "brick \"wall\" é.jpg");
@@ -211,7 +213,7 @@ TEST(StexFile, WriteFailureNamesThePath)
 TEST(StexFile, WriteRefusesAnInvalidDescription)
 {
     TextureDescription description = sample();
-    description.wavelet->band_weights[0][0] = -1;
+    description.parameters.get<stochtex::WaveletParameters>().band_weights[0][0] = -1;
     const std::string path = stochtex::test::temp_dir("stex_write_invalid") + "/t.stex";
     const std::string message = error_of([&] { stochtex::write_stex(path, description); });
     EXPECT_TRUE(starts_with(message, path + ": parameters.band_weights[0][0]: ")) << message;
@@ -423,28 +425,28 @@ TEST(StexValidate, Histograms)
 TEST(StexValidate, BandWeights)
 {
     TextureDescription d = sample();
-    d.wavelet->band_weights[1][2] = -0.5;
+    d.parameters.get<stochtex::WaveletParameters>().band_weights[1][2] = -0.5;
     EXPECT_EQ(validate_error(d), "t.stex: parameters.band_weights[1][2]: weights must not be negative, got -0.5");
 
     d = sample();
-    d.wavelet->band_weights[2].pop_back();
+    d.parameters.get<stochtex::WaveletParameters>().band_weights[2].pop_back();
     EXPECT_EQ(validate_error(d), "t.stex: parameters.band_weights[2]: has 4 bands but channel 0 has 5");
 
     d = sample();
-    d.wavelet->band_weights = {{{}, {}, {}}};
+    d.parameters.get<stochtex::WaveletParameters>().band_weights = {{{}, {}, {}}};
     EXPECT_EQ(validate_error(d), "t.stex: parameters.band_weights[0]: expected 1 to 24 bands, got 0");
 
     d = sample();
-    for (auto& channel : d.wavelet->band_weights) channel.assign(25, 1.0);
+    for (auto& channel : d.parameters.get<stochtex::WaveletParameters>().band_weights) channel.assign(25, 1.0);
     EXPECT_EQ(validate_error(d), "t.stex: parameters.band_weights[0]: expected 1 to 24 bands, got 25");
 
     d = sample();
-    d.wavelet->band_weights[0][4] = std::numeric_limits<double>::infinity();
+    d.parameters.get<stochtex::WaveletParameters>().band_weights[0][4] = std::numeric_limits<double>::infinity();
     EXPECT_EQ(validate_error(d),
               "t.stex: parameters.band_weights[0][4]: expected a finite number within float range, got inf");
 
     d = sample();
-    d.wavelet.reset();
+    d.parameters.reset();
     EXPECT_EQ(validate_error(d), "t.stex: parameters: missing for model 'wavelet'");
 }
 

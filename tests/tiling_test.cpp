@@ -4,15 +4,15 @@
 // round trip and its strict validation.
 #include "test_support.h"
 
-#include "base64.h"
-#include "colour_map_filter.h"
-#include "colour_maps.h"
-#include "moment_pyramid.h"
-#include "normal_map_filter.h"
-#include "quantised_image.h"
-#include "tiling_evaluation.h"
-#include "tiling_exemplar.h"
-#include "tiling_texture.h"
+#include "stex/base64.h"
+#include "models/tiling/colour_map_filter.h"
+#include "models/tiling/colour_maps.h"
+#include "models/tiling/moment_pyramid.h"
+#include "models/tiling/normal_map_filter.h"
+#include "stex/quantised_image.h"
+#include "models/tiling/tiling_estimator_reference.h"
+#include "models/tiling/tiling_exemplar.h"
+#include "models/tiling/tiling_texture.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
@@ -20,6 +20,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/tiling.h>
+#include <stochtex/models/tiling_parameters.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -76,7 +77,7 @@ TextureDescription colour_tiling()
         AnalysisOptions options;
         options.model = "tiling";
         options.histogram = HistogramMode::on;
-        options.tiling_exemplar_size = 128;
+        options.model_options = {{"exemplar-size", "128"}};
         return analyze(committed_photo(), options);
     }();
     return d;
@@ -320,7 +321,7 @@ TEST(TilingTexture, RenderKeepsThePhotoStatistics)
     AnalysisOptions options;
     options.model = "tiling";
     options.histogram = HistogramMode::on;
-    options.tiling_exemplar_size = 512;
+    options.model_options = {{"exemplar-size", "512"}};
     const TextureDescription d = analyze(committed_photo(), options);
     RenderSettings settings;
     settings.width = settings.height = 512;
@@ -394,7 +395,7 @@ TEST(TilingStex, RoundTripIsByteIdenticalAndKeepsTheSamples)
     const TextureDescription d = colour_tiling();
     const std::string text = format_stex(d);
     const TextureDescription back = parse_stex(text, "t.stex");
-    EXPECT_EQ(back.tiling->exemplar.samples, d.tiling->exemplar.samples);
+    EXPECT_EQ(back.parameters.get<TilingParameters>().exemplar.samples, d.parameters.get<TilingParameters>().exemplar.samples);
     EXPECT_EQ(format_stex(back), text);
     EXPECT_LT(text.size(), std::size_t(80000)) << "a 128² 8-bit exemplar";
 }
@@ -439,16 +440,16 @@ TEST(TilingStex, NonColourOutputsRequireTheirColourMapAndRgbMode)
     options.exemplar_size = 32;
     TextureDescription d = phasor_texture("phasor-square", 1.0 / 8, options);
     TextureDescription bad = d;
-    bad.tiling->colour_map = {};
+    bad.parameters.get<TilingParameters>().colour_map = {};
     EXPECT_EQ(error_of([&] { validate(bad, "t.stex"); }), "t.stex: parameters.colour_map: missing: output colour_map needs a colour map");
     bad = d;
     bad.colour_mode = ColourMode::pca;
     EXPECT_EQ(error_of([&] { validate(bad, "t.stex"); }), "t.stex: colour.mode: must be \"rgb\" for tiling output colour_map");
     bad = d;
-    bad.tiling->colour_map = quantise(std::vector<std::vector<float>>(3, std::vector<float>(16 * 32, 0.5f)), 16, 32, 8);
+    bad.parameters.get<TilingParameters>().colour_map = quantise(std::vector<std::vector<float>>(3, std::vector<float>(16 * 32, 0.5f)), 16, 32, 8);
     EXPECT_EQ(error_of([&] { validate(bad, "t.stex"); }), "t.stex: parameters.colour_map: must be square, got 16x32");
     bad = d;
-    bad.tiling->exemplar.samples[5] = 300;
+    bad.parameters.get<TilingParameters>().exemplar.samples[5] = 300;
     EXPECT_EQ(error_of([&] { validate(bad, "t.stex"); }), "t.stex: parameters.exemplar.png: sample 300 exceeds 255");
     bad = d;
     bad.model = "wavelet";
@@ -481,7 +482,7 @@ TEST(TilingSharedExemplars, GravelKeepsItsHistogram)
     const Image photo = read_image_linear(path);
     AnalysisOptions options;
     options.model = "tiling";
-    options.tiling_exemplar_size = 512;
+    options.model_options = {{"exemplar-size", "512"}};
     const TextureDescription d = analyze(photo, options);
     RenderSettings settings;
     settings.width = settings.height = 512;

@@ -3,16 +3,17 @@
 // (Fig. 6), anti-aliasing by band clamping, determinism.
 #include "test_support.h"
 
-#include "band_power.h"
-#include "colour_basis.h"
-#include "random.h"
-#include "wavelet_noise.h"
-#include "wavelet_texture.h"
+#include "models/wavelet/band_power.h"
+#include "colour/colour_basis.h"
+#include "numerics/random.h"
+#include "models/wavelet/wavelet_noise.h"
+#include "models/wavelet/wavelet_texture.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/metrics.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <gtest/gtest.h>
 
@@ -33,7 +34,7 @@ TextureDescription red_channel_texture(const std::vector<double>& weights, std::
     d.mean = {0.5, 0.5, 0.5};
     WaveletParameters parameters;
     parameters.band_weights = {weights, std::vector<double>(weights.size(), 0.0), std::vector<double>(weights.size(), 0.0)};
-    d.wavelet = parameters;
+    d.parameters = parameters;
     return d;
 }
 
@@ -126,7 +127,7 @@ TEST(WaveletAnalysis, RecoversRandomWeights)
         for (double& w : weights) w = 0.02 + 0.08 * rng.uniform();
         const Image image = render_at_exemplar_scale(red_channel_texture(weights, seed), 512);
         const TextureDescription recovered = analyze(image, options);
-        const auto& w = recovered.wavelet->band_weights[0];
+        const auto& w = recovered.parameters.get<WaveletParameters>().band_weights[0];
         ASSERT_EQ(w.size(), std::size_t(bands));
         for (int j = 0; j < bands; ++j) relative_error_sum[j] += std::abs(w[j] - weights[j]) / weights[j];
     }
@@ -228,14 +229,14 @@ TEST(WaveletAnalysis, WorksOnTheCommittedExemplarAndNonSquarePhotos)
 {
     const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
     const TextureDescription d = analyze(photo, AnalysisOptions{});
-    EXPECT_EQ(d.wavelet->band_weights[0].size(), 8u);
+    EXPECT_EQ(d.parameters.get<WaveletParameters>().band_weights[0].size(), 8u);
     // A non-square, non-power-of-two crop is analysed whole (no cropping to a square).
     Image crop(300, 200, 3);
     for (int y = 0; y < 200; ++y)
         for (int x = 0; x < 300; ++x)
             for (int c = 0; c < 3; ++c) crop.at(x, y, c) = photo.at(x, y, c);
     const TextureDescription e = analyze(crop, AnalysisOptions{});
-    EXPECT_EQ(e.wavelet->band_weights[0].size(), 6u);
+    EXPECT_EQ(e.parameters.get<WaveletParameters>().band_weights[0].size(), 6u);
     EXPECT_EQ(e.provenance.source_width, 300);
 }
 

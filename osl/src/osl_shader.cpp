@@ -1,4 +1,5 @@
 #include <stochtex/error.h>
+#include <stochtex/model.h>
 #include <stochtex/osl/osl_shader.h>
 #include <stochtex/wavelet_shader_data.h>
 
@@ -70,7 +71,12 @@ void write_single_channel_exr(const std::string& path, int width, int height, co
 
 }  // namespace
 
-bool has_osl_form(const std::string& model) { return model == "wavelet"; }
+bool has_osl_form(const std::string& model)
+{
+    for (const ModelInfo* info : registered_model_infos())
+        if (info->name == model) return info->capabilities.osl;
+    return false;
+}
 
 std::string osl_shader_name_from_path(const std::string& path)
 {

@@ -1,6 +1,7 @@
 #include <stochtex/pov/pov_include.h>
 
 #include <stochtex/error.h>
+#include <stochtex/model.h>
 
 #include "include_modes.h"
 
@@ -22,7 +23,12 @@ PovMode pov_mode_from_string(const std::string& text)
 
 const char* to_string(PovMode mode) { return mode == PovMode::procedural ? "procedural" : "baked"; }
 
-bool has_procedural_form(const std::string& model) { return model == "wavelet"; }
+bool has_procedural_form(const std::string& model)
+{
+    for (const ModelInfo* info : registered_model_infos())
+        if (info->name == model) return info->capabilities.pov_procedural;
+    return false;
+}
 
 void validate_pov_name(const std::string& name)
 {

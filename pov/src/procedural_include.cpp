@@ -17,6 +17,7 @@
 #include <stochtex/error.h>
 #include <stochtex/octave_spectrum.h>
 #include <stochtex/texture.h>
+#include <stochtex/models/wavelet_parameters.h>
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +61,7 @@ PovInclude make_procedural_include(const TextureDescription& description, const 
     const std::string& n = options.name;
     const PovNoiseCalibration& noise = pov_noise_calibration();
     const bool shared_noise = description.colour_mode == ColourMode::rgb_shared;
-    const int bands = int(description.wavelet->band_weights[0].size());
+    const int bands = int(description.parameters.get<WaveletParameters>().band_weights[0].size());
     // One coarser octave than bands: POV-Ray's noise is broader than a wavelet band, and the
     // fit may use it for the lowest frequencies (or give it weight 0).
     const int octave_count = bands + 1;

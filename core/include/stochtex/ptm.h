@@ -12,6 +12,7 @@
 #include <stochtex/metrics.h>
 #include <stochtex/progress.h>
 #include <stochtex/texture_description.h>
+#include <stochtex/models/ptm_parameters.h>
 
 #include <cmath>
 #include <cstdint>

@@ -1,16 +1,20 @@
 // stochtex — the texture description: everything a .stex file holds, in memory.
 //
 // A description is model-independent data (colour, histograms, seed, scale, provenance) plus
-// exactly one model's parameters. The file format is documented in docs/stex-format.md; the
+// exactly one model's parameters (held as ModelParameters; each model's struct is in
+// stochtex/models/). The file format is documented in docs/stex-format.md; the
 // reader (stex_file.h) validates every field, so a TextureDescription obtained from a file is
 // always usable by make_texture().
 #pragma once
 
+#include <any>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -35,50 +39,6 @@ struct HistogramMap {
     bool enabled() const { return !z.empty(); }
 };
 
-/// Multiresolution wavelet noise by example (paper 000).
-struct WaveletParameters {
-    /// band_weights[c][j]: weight of band j for channel c. Band j = 0 is the finest: its
-    /// frequencies lie in [1/4, 1/2) cycles per exemplar pixel; band j covers [2^-(j+2), 2^-(j+1)).
-    std::array<std::vector<double>, 3> band_weights;
-};
-
-/// Which frequencies the kernels of a Gabor noise draw (paper 001, Fig. 4). F is an octave's
-/// frequency; `direction` is GaborParameters::direction.
-enum class GaborKind {
-    isotropic,    ///< ω uniform on the sphere |ω| = F: every slice looks alike (granite, sand)
-    anisotropic,  ///< ω = F·direction for every kernel: oriented (wood grain, brushed metal)
-    hybrid,       ///< ω uniform on the circle |ω| = F in the plane normal to `direction`
-};
-const char* to_string(GaborKind kind);
-GaborKind gabor_kind_from_string(const std::string& name);  // throws Error
-
-/// Random-phase Gabor noise octaves (paper 001, with paper 000's colour and histogram model).
-/// Channel c is Σ_k weights[c][k] · n_k, n_k a solid random-phase Gabor noise of unit variance
-/// whose kernels have frequency |ω| = frequencies[k] and bandwidth a = bandwidth · frequencies[k].
-struct GaborParameters {
-    GaborKind kind = GaborKind::isotropic;
-    /// Unit vector in solid texture space (u, v, w): the frequency direction (anisotropic) or the
-    /// normal of the frequency plane (hybrid); unused by isotropic noise.
-    std::array<double, 3> direction{0, 0, 1};
-    /// a / F, the same for every octave (so octaves are scaled copies of one another).
-    double bandwidth = 1;
-    /// Mean number of impulses whose kernel (5 % envelope radius) covers a point: quality vs cost.
-    double impulses_per_kernel = 16;
-    /// Octave frequencies F_k in cycles per exemplar pixel.
-    std::vector<double> frequencies;
-    /// weights[c][k]: standard deviation of octave k in channel c (as many as frequencies).
-    std::array<std::vector<double>, 3> weights;
-};
-
-/// What the blended channels of a tiling texture are (docs/models/tiling.md).
-enum class TilingOutput {
-    colour,      ///< 3 decorrelated colour channels: histogram maps, then rgb = mean + basis · y
-    colour_map,  ///< 2 noises in [0, 1] indexing a 2D colour map (colour-mapped noise vector field)
-    normal_map,  ///< 2 slopes (∂h/∂x, ∂h/∂y) per exemplar pixel: a normal map, LEAN-filtered
-};
-const char* to_string(TilingOutput output);
-TilingOutput tiling_output_from_string(const std::string& name);  // throws Error
-
 /// A small image stored inside a .stex file: `channels` planes of width × height samples
 /// quantised to `bits` (8 or 16). Sample q of channel c stands for
 /// ranges[c][0] + q / (2^bits − 1) · (ranges[c][1] − ranges[c][0]).
@@ -89,91 +49,36 @@ struct QuantisedImage {
     double value(int channel, int x, int y) const;
 };
 
-/// Tiling and blending of an exemplar (paper 002 §1: Heitz–Neyret 2018, Deliot–Heitz 2019).
-struct TilingParameters {
-    TilingOutput output = TilingOutput::colour;
-    /// Edge of the triangle grid in exemplar widths (of the shorter side); 1/(2√3) is Deliot–Heitz's.
-    double triangle_edge = 0.28867513459481287;
-    /// Periodic, sides powers of two. colour: 3 channels y (histogram-Gaussianised or centred);
-    /// colour_map: 2 noises in [0, 1]; normal_map: 2 slopes.
-    QuantisedImage exemplar;
-    /// colour_map only (else empty): S as 3 channels of sRGB-encoded values in [0, 1]; x follows
-    /// noise 0, y noise 1.
-    QuantisedImage colour_map;
-};
+/// One model's parameters, whatever the model: a value (copies are deep) holding the parameter
+/// struct of the model the description names (stochtex/models/<name>_parameters.h), or nothing.
+/// Which struct belongs to which model is the model registry's knowledge (stochtex/model.h).
+class ModelParameters {
+public:
+    ModelParameters() = default;
+    template <class Parameters, class = std::enable_if_t<!std::is_same_v<std::decay_t<Parameters>, ModelParameters>>>
+    ModelParameters(Parameters value) : value_(std::move(value)) {}
 
-/// How a PTM models colour (paper 004 builds on Malzbender et al.'s PTMs, which have both).
-enum class PtmColour {
-    lrgb,  ///< one luminance function per texel times a per-texel chroma (9 numbers per texel)
-    rgb,   ///< one function per colour channel (18 numbers per texel)
-};
-const char* to_string(PtmColour colour);
-PtmColour ptm_colour_from_string(const std::string& name);  // throws Error
+    bool empty() const { return !value_.has_value(); }
+    void reset() { value_.reset(); }
+    template <class Parameters>
+    bool holds() const { return std::any_cast<Parameters>(&value_) != nullptr; }
+    /// The parameters as `Parameters`; throws Error if they are of another model (or absent).
+    template <class Parameters>
+    Parameters& get() { return *checked(std::any_cast<Parameters>(&value_)); }
+    template <class Parameters>
+    const Parameters& get() const { return *checked(std::any_cast<Parameters>(&value_)); }
+    /// The held struct's type (typeid(void) when empty), for the registry.
+    const std::type_info& type() const { return value_.type(); }
 
-struct PtmMaps;  // stochtex/ptm.h
-
-/// A polynomial texture map (paper 004): per texel a reflectance function of the light
-/// direction, evaluated for `light`. The coefficient maps live in a float EXR beside the .stex
-/// (docs/stex-format.md, "ptm"); read_stex loads them, write_stex writes them.
-struct PtmParameters {
-    PtmColour colour = PtmColour::lrgb;
-    /// File name of the coefficient maps beside the .stex (no directories). write_stex names
-    /// it after the .stex it writes: "<stem>.ptm.exr".
-    std::string coefficient_file;
-    /// Unit light direction the texture is evaluated for: x to the image's right, y to its top,
-    /// z out of the surface (z > 0). Open-time hint: stex:light (stochtex/lighting.h).
-    std::array<double, 3> light{0, 0, 1};
-    /// The maps (shared by copies of the description; never modified once loaded).
-    std::shared_ptr<const PtmMaps> maps;
-    /// Unbounded (docs/models/ptm.md, "Unbounded"): the maps — periodic — tiled and blended over
-    /// a triangle grid (the tiling model's, seeded by the description's seed), all coefficient
-    /// fields with the same tiles; false: the maps repeat.
-    bool unbounded = false;
-    /// The grid's triangle edge in maps widths (of the shorter side), unbounded only.
-    double triangle_edge = 0.28867513459481287;
-};
-
-/// One stratum of local random-phase noise (paper 003, §4; docs/models/lrp.md): a part of the
-/// spectrum holding an equal share of its energy, with its own lattice of windows, sampled by
-/// sub-strata. Every lattice point draws one frequency per sub-stratum, with random phases.
-struct LrpStratum {
-    /// Δ_S: lattice spacing (and window size), exemplar pixels.
-    double spacing = 1;
-    /// Standard deviation of the stratum's noise in each decorrelated channel.
-    std::array<double, 3> sigma{0, 0, 0};
-    /// substrata[j]: frequency bins kx0, ky0, kx1, ky1, … of sub-stratum j, in units of
-    /// 1 / spectrum_size cycles per exemplar pixel, on one half of the symmetric spectrum. A
-    /// lattice point draws one of them uniformly and jitters it within its bin.
-    std::vector<std::vector<int>> substrata;
-};
-
-/// One block of the fixed-phase structure: per channel c,
-/// Σ_t coefficients[c][2t]·cos θ_t − coefficients[c][2t+1]·sin θ_t, θ_t = 2π k_t·(x − x_b) / fit_size,
-/// x_b the block's centre (its window's lattice point).
-struct LrpBlock {
-    std::vector<int> frequencies;                     ///< kx0, ky0, kx1, ky1, …
-    std::array<std::vector<double>, 3> coefficients;  ///< per channel: re0, im0, re1, im1, …
-};
-
-/// The fixed-phase region R of texture by example (paper 003, §5): the strongest frequencies of
-/// a spectrum_size² crop of the photo, reproduced blockwise; the crop repeats every spectrum_size
-/// exemplar pixels, broken by random placement and turbulence.
-struct LrpStructure {
-    int block_size = 0;  ///< B, exemplar pixels: the crop holds (spectrum_size / B)² blocks
-    int fit_size = 0;    ///< E: block frequencies are k / E cycles per exemplar pixel
-    bool random_placement = true;  ///< shift blocks of half a crop by random offsets (blended)
-    double turbulence = 0;         ///< standard deviation of the displacement, exemplar pixels; 0: none
-    /// The blocks' coefficients are stored in files as integer multiples of this step (rounded
-    /// on writing): short text, and a round trip that changes nothing.
-    double coefficient_step = 1e-4;
-    std::vector<LrpBlock> blocks;  ///< row-major
-};
-
-/// Local random-phase noise (paper 003): random-phase strata plus an optional fixed-phase structure.
-struct LrpParameters {
-    int spectrum_size = 256;  ///< T: frequency bins are k / T cycles per exemplar pixel
-    std::vector<LrpStratum> strata;
-    std::optional<LrpStructure> structure;  ///< absent: noise by example only (r = 0)
+private:
+    template <class T>
+    static T* checked(T* value)
+    {
+        if (!value) wrong_type();
+        return value;
+    }
+    [[noreturn]] static void wrong_type();
+    std::any value_;
 };
 
 /// How image consumers (the OIIO plugin) present the texture: a virtual image that is one
@@ -205,7 +110,7 @@ struct TextureDescription {
     static constexpr int current_version = 1;
 
     int version = current_version;
-    std::string model;  ///< one of known_models()
+    std::string model;  ///< a registered model (stochtex/model.h: known_models())
     std::uint32_t seed = 1;
 
     /// Exemplar pixels per texture unit: a render at units_per_pixel = 1/pixels_per_unit shows
@@ -229,15 +134,8 @@ struct TextureDescription {
     /// The "image" block; absent: ImageLayout's defaults.
     std::optional<ImageLayout> image;
 
-    // Model parameters: exactly the one named by `model` is set.
-    std::optional<WaveletParameters> wavelet;
-    std::optional<GaborParameters> gabor;
-    std::optional<TilingParameters> tiling;
-    std::optional<PtmParameters> ptm;
-    std::optional<LrpParameters> lrp;
+    /// The parameters of the model named by `model` (its struct, and no other model's).
+    ModelParameters parameters;
 };
-
-/// Model names accepted in .stex files and by `stex analyze --model`.
-const std::vector<std::string>& known_models();
 
 }  // namespace stochtex

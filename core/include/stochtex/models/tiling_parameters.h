@@ -1,0 +1,34 @@
+// stochtex — Tiling and blending: the parameters block of a tiling .stex (models/tiling/).
+// The declaration of these fields (keys, ranges, defaults, docs) is the model's parameter schema,
+// in core/src/models/tiling/; docs/stex-format.md lists it.
+#pragma once
+
+#include <stochtex/texture_description.h>
+
+#include <string>
+
+namespace stochtex {
+
+/// What the blended channels of a tiling texture are (docs/models/tiling.md).
+enum class TilingOutput {
+    colour,      ///< 3 decorrelated colour channels: histogram maps, then rgb = mean + basis · y
+    colour_map,  ///< 2 noises in [0, 1] indexing a 2D colour map (colour-mapped noise vector field)
+    normal_map,  ///< 2 slopes (∂h/∂x, ∂h/∂y) per exemplar pixel: a normal map, LEAN-filtered
+};
+const char* to_string(TilingOutput output);
+TilingOutput tiling_output_from_string(const std::string& name);  // throws Error
+
+/// Tiling and blending of an exemplar (paper 002 §1: Heitz–Neyret 2018, Deliot–Heitz 2019).
+struct TilingParameters {
+    TilingOutput output = TilingOutput::colour;
+    /// Edge of the triangle grid in exemplar widths (of the shorter side); 1/(2√3) is Deliot–Heitz's.
+    double triangle_edge = 0.28867513459481287;
+    /// Periodic, sides powers of two. colour: 3 channels y (histogram-Gaussianised or centred);
+    /// colour_map: 2 noises in [0, 1]; normal_map: 2 slopes.
+    QuantisedImage exemplar;
+    /// colour_map only (else empty): S as 3 channels of sRGB-encoded values in [0, 1]; x follows
+    /// noise 0, y noise 1.
+    QuantisedImage colour_map;
+};
+
+}  // namespace stochtex

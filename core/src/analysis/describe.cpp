@@ -1,0 +1,52 @@
+#include <stochtex/describe.h>
+#include <stochtex/texture.h>
+
+#include "models/model.h"
+
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace stochtex {
+
+namespace {
+std::string format(const char* pattern, double a, double b = 0, double c = 0)
+{
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+    return buffer;
+}
+}  // namespace
+
+std::string describe(const TextureDescription& d)
+{
+    std::ostringstream out;
+    out << "model        " << d.model << " (format version " << d.version << ")\n";
+    out << "seed         " << d.seed << "\n";
+    out << "scale        " << d.pixels_per_unit << " exemplar pixels per texture unit; unit = " << d.unit_size_m
+        << " m\n";
+    if (!d.provenance.source.empty())
+        out << "source       " << d.provenance.source << " (" << d.provenance.source_width << "x"
+            << d.provenance.source_height << ", " << d.provenance.input_colour_space << ")\n";
+    out << "colour       " << to_string(d.colour_mode) << ", " << d.colour_space << "\n";
+    out << "mean         " << format("%.5f %.5f %.5f", d.mean[0], d.mean[1], d.mean[2]) << "\n";
+    for (int r = 0; r < 3; ++r)
+        out << (r == 0 ? "basis        " : "             ") << format("%+.4f %+.4f %+.4f", d.basis[r][0], d.basis[r][1], d.basis[r][2])
+            << "\n";
+    for (int c = 0; c < 3; ++c) {
+        out << "histogram " << c << "  ";
+        if (!d.histograms[c].enabled()) {
+            out << "off (Gaussian)\n";
+            continue;
+        }
+        out << d.histograms[c].z.size() << " knots, values " << format("%.4f .. %.4f", d.histograms[c].value.front(), d.histograms[c].value.back())
+            << "\n";
+    }
+    out << model_of(d).describe(d);
+    const Rgb mean = make_texture(d)->mean();
+    out << "texture mean " << format("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";
+    return out.str();
+}
+
+}  // namespace stochtex

@@ -1,0 +1,89 @@
+#include "blending/tiling_grid.h"
+
+#include "numerics/random.h"
+
+#include <stochtex/error.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace stochtex {
+
+namespace {
+const double sqrt3 = std::sqrt(3.0);
+
+std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
+}  // namespace
+
+TilingGrid::TilingGrid(std::uint32_t seed, double edge) : seed_(seed), edge_{edge, edge}
+{
+    if (!(edge > 0) || !std::isfinite(edge)) throw Error("tiling grid: the triangle edge must be positive");
+}
+
+TilingGrid::TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period) : TilingGrid(seed, edge)
+{
+    for (double p : period)
+        if (!(p > 0) || !std::isfinite(p)) throw Error("tiling grid: the period must be positive and finite");
+    // Along x the lattice repeats every edge; along y every √3 edges (two rows of triangles).
+    cells_x_ = std::max<std::int64_t>(1, std::llround(period[0] / edge));
+    repeats_y_ = std::max<std::int64_t>(1, std::llround(period[1] / (sqrt3 * edge)));
+    edge_ = {period[0] / double(cells_x_), period[1] / (sqrt3 * double(repeats_y_))};
+}
+
+void TilingGrid::draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const
+{
+    vertex.period_shift = {0, 0};
+    if (cells_x_ > 0) {
+        // The periodic lattice's representative of (i, j): j in [0, 2m), then i in [0, n);
+        // (i, j) = (I + a n − k m, J + 2 k m) lies a whole periods along x and k along y away.
+        const std::int64_t rows = 2 * repeats_y_;
+        const std::int64_t row = floor_mod(j, rows);
+        const std::int64_t k = (j - row) / rows;
+        const std::int64_t shifted = i + k * repeats_y_;
+        const std::int64_t column = floor_mod(shifted, cells_x_);
+        const std::int64_t a = (shifted - column) / cells_x_;
+        vertex.period_shift = {double(a) * (edge_[0] * double(cells_x_)), double(k) * (edge_[1] * sqrt3 * double(repeats_y_))};
+        i = column;
+        j = row;
+    }
+    SplitMix64 rng(mix_seed(seed_, std::uint64_t(i), std::uint64_t(j)));
+    const double ox = rng.uniform();
+    vertex.offset = {ox, rng.uniform()};
+}
+
+std::array<double, 2> tile_position(const TileVertex& vertex, double x, double y, int width, int height)
+{
+    const double shift_x = std::round(vertex.offset[0] * width - (vertex.centre[0] - vertex.period_shift[0]));
+    const double shift_y = std::round(vertex.offset[1] * height - (vertex.centre[1] - vertex.period_shift[1]));
+    return {x - vertex.period_shift[0] + shift_x, y - vertex.period_shift[1] + shift_y};
+}
+
+TileBlend TilingGrid::blend(double x, double y) const
+{
+    // Skew to the lattice basis (1, 0), (½, √3/2): cell = floor, f = barycentric fractions.
+    const double gx = x / edge_[0], gy = y / edge_[1];
+    const double sy = 2 * gy / sqrt3, sx = gx - 0.5 * sy;
+    const double cx = std::floor(sx), cy = std::floor(sy);
+    const double fx = sx - cx, fy = sy - cy;
+    const std::int64_t i = std::int64_t(cx), j = std::int64_t(cy);
+    std::array<std::int64_t, 6> vertices;
+    std::array<double, 3> b;
+    if (fx + fy < 1) {
+        vertices = {i, j, i + 1, j, i, j + 1};
+        b = {1 - fx - fy, fx, fy};
+    } else {
+        vertices = {i + 1, j + 1, i + 1, j, i, j + 1};
+        b = {fx + fy - 1, 1 - fy, 1 - fx};
+    }
+    const double norm = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    TileBlend result;
+    for (int k = 0; k < 3; ++k) {
+        const std::int64_t vi = vertices[2 * k], vj = vertices[2 * k + 1];
+        result[k].weight = b[k] / norm;
+        result[k].centre = {edge_[0] * (double(vi) + 0.5 * double(vj)), edge_[1] * (0.5 * sqrt3 * double(vj))};
+        draw(vi, vj, result[k]);
+    }
+    return result;
+}
+
+}  // namespace stochtex

@@ -1,0 +1,39 @@
+// From decorrelated Gaussian channels to RGB: histogram maps, then the colour basis and mean
+// (paper 000, §7 synthesis steps 2–4). Shared by every model whose channels are Gaussian noises.
+//
+// Filtering meets a non-linear histogram map here. A model that removes detail under
+// minification passes the standard deviation (in units of σ_M) of what it removed; the map
+// then returns E[f(z + σ_d Z)], Z ~ N(0, 1) (Gauss–Hermite), the correctly filtered value, so
+// minification converges to the texture's true mean rather than to the median f(0).
+#pragma once
+
+#include "colour/histogram_map.h"
+
+#include <stochtex/texture.h>
+
+#include <array>
+
+namespace stochtex {
+
+class ColourMapping {
+public:
+    /// sigma_m: each decorrelated channel's standard deviation (σ_M, eq. 2) before mapping.
+    ColourMapping(const TextureDescription& description, const std::array<double, 3>& sigma_m);
+
+    /// z: each channel's kept noise in units of σ_M; dropped_sigma: what filtering removed,
+    /// in the same units (0 when nothing was removed).
+    Rgb to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const;
+
+    /// The expected value of the texture (everything filtered away).
+    Rgb mean() const { return to_rgb({0, 0, 0}, {1, 1, 1}); }
+
+private:
+    double map_channel(int c, double z, double dropped_sigma) const;
+
+    std::array<double, 3> sigma_m_;
+    std::array<MonotoneCubic, 3> maps_;  // empty: channel stays Gaussian
+    std::array<double, 3> mean_;
+    std::array<std::array<double, 3>, 3> basis_;
+};
+
+}  // namespace stochtex

@@ -1,0 +1,250 @@
+// The gabor model (paper 001) in the registry: its parameter schema, analysis options, fit,
+// morph and `stex info` lines. The maths is in gabor_kernel, gabor_noise, gabor_statistics,
+// gabor_fit and gabor_texture.
+#include "models/gabor/gabor_fit.h"
+#include "models/gabor/gabor_noise.h"
+#include "models/gabor/gabor_texture.h"
+#include "models/model.h"
+
+#include <stochtex/models/gabor_parameters.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace stochtex {
+
+const char* to_string(GaborKind kind)
+{
+    switch (kind) {
+    case GaborKind::isotropic: return "isotropic";
+    case GaborKind::anisotropic: return "anisotropic";
+    case GaborKind::hybrid: return "hybrid";
+    }
+    throw Error("invalid GaborKind value " + std::to_string(static_cast<int>(kind)));
+}
+
+GaborKind gabor_kind_from_string(const std::string& name)
+{
+    for (GaborKind kind : {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid})
+        if (name == to_string(kind)) return kind;
+    throw Error("unknown Gabor kind '" + name + "' (valid: isotropic, anisotropic, hybrid)");
+}
+
+namespace {
+
+constexpr std::size_t max_octaves = 24;
+constexpr double unit_tolerance = 1e-4;
+// Gabor octaves: frequencies above 1 cycle per exemplar pixel are finer than twice the photo's
+// Nyquist frequency (a description that wants them uses a larger pixels_per_unit); the lower
+// bound keeps the impulse cells' indices finite at any texture coordinate. Bandwidth and
+// impulse count bound the cost of an evaluation.
+const NumberRange frequency_range{1e-6, 1, ""};
+const NumberRange bandwidth_range{1.0 / 16, 16, ""};
+const NumberRange impulse_range{1, 256, ""};
+
+ParameterSchema<GaborParameters> gabor_schema()
+{
+    using P = GaborParameters;
+    ParameterSchema<P> schema;
+    schema.enumeration("kind", &P::kind, to_string, gabor_kind_from_string,
+                       {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid},
+                       {"isotropic", "", "which frequencies the kernels draw: on the sphere |ω| = F, along direction, "
+                                         "or on the circle normal to direction"});
+    schema.numbers("direction", &P::direction, {}, {"[0, 0, 1]", "", "unit vector in (u, v, w): the frequency direction "
+                                                                   "(anisotropic) or the frequency plane's normal (hybrid)"},
+                   [](const P& p, const std::string& path, const std::string& source) {
+                       double length2 = 0;
+                       for (double d : p.direction) length2 += d * d;
+                       if (!(std::fabs(std::sqrt(length2) - 1) <= unit_tolerance))
+                           json_fields::fail(source, path,
+                                             "must be a unit vector (length within " + number_text(unit_tolerance) +
+                                                 " of 1), its length is " + number_text(std::sqrt(length2)));
+                   });
+    schema.number("bandwidth", &P::bandwidth, bandwidth_range,
+                  {"1", "", "a / F: the kernels' bandwidth relative to their octave's frequency"});
+    schema.number("impulses_per_kernel", &P::impulses_per_kernel, impulse_range,
+                  {"16", "impulses", "mean number of impulses whose kernel covers a point: quality vs cost"});
+    schema.numbers("frequencies", &P::frequencies,
+                   {"", "cycles / exemplar px", "the octaves' frequencies F_k, 1 to 24 of them, each in [1e-06, 1]"},
+                   [](const P& p, const std::string& path, const std::string& source) {
+                       const std::size_t octaves = p.frequencies.size();
+                       if (octaves < 1 || octaves > max_octaves)
+                           json_fields::fail(source, path,
+                                             "expected 1 to " + std::to_string(max_octaves) + " octaves, got " +
+                                                 std::to_string(octaves));
+                       for (std::size_t k = 0; k < octaves; ++k)
+                           check_in_range(p.frequencies[k], frequency_range, json_path(path, k), source);
+                   });
+    schema.channel_numbers(
+        "weights", &P::weights,
+        {"", "", "per decorrelated channel, the standard deviation of each octave (≥ 0; one per frequency)"},
+        [](const P& p, const std::string& key_path, const std::string& source) {
+            const std::size_t octaves = p.frequencies.size();
+            for (std::size_t channel = 0; channel < 3; ++channel) {
+                const std::string path = json_path(key_path, channel);
+                const std::vector<double>& weights = p.weights[channel];
+                if (weights.size() != octaves)
+                    json_fields::fail(source, path,
+                                      "has " + std::to_string(weights.size()) + " weights but frequencies has " +
+                                          std::to_string(octaves) + " octaves");
+                for (std::size_t k = 0; k < octaves; ++k) {
+                    check_float_finite(weights[k], json_path(path, k), source);
+                    if (weights[k] < 0)
+                        json_fields::fail(source, json_path(path, k), "weights must not be negative, got " + number_text(weights[k]));
+                }
+            }
+        });
+    return schema;
+}
+
+ModelInfo gabor_info()
+{
+    ModelInfo info;
+    info.name = "gabor";
+    info.summary = "random-phase Gabor noise octaves (Lagae & Drettakis 2011): solid textures sliced by the surface, "
+                   "filtered analytically; isotropic, anisotropic or hybrid";
+    info.doc = "docs/models/gabor.md";
+    info.capabilities.analysis = true;
+    info.capabilities.solid = true;
+    info.capabilities.morph = true;
+    info.capabilities.gaussian_channels = true;
+    return info;
+}
+
+std::string format(const char* pattern, double a, double b = 0, double c = 0)
+{
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
+    return buffer;
+}
+
+double lerp(double a, double b, double t) { return a + (b - a) * t; }
+
+class GaborModel final : public ModelOf<GaborParameters> {
+public:
+    GaborModel() : ModelOf(gabor_info(), gabor_schema())
+    {
+        AnalysisOption bandwidth = number_option(
+            "bandwidth", 1.0 / 16, 16, {"auto", "", "kernel bandwidth a / F; auto (or 0): chosen by the fit"}, "auto");
+        // 0 was the spelling of "auto" before options were declared; it stays accepted.
+        bandwidth.canonical = [](const std::string& text) {
+            if (text == "auto") return text;
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != 0 || !(value == 0 || (value >= bandwidth_range.min && value <= bandwidth_range.max)))
+                throw Error("Gabor bandwidth must be 0 (fitted) or in [0.0625, 16], got " + text);
+            return value == 0 ? std::string("auto") : text;
+        };
+        bandwidth.info.range = "auto, 0 or [0.0625, 16]";
+        declare_analysis_options(
+            {choice_option("gabor-kind", {"isotropic", "anisotropic", "hybrid"},
+                           {"isotropic", "",
+                            "isotropic (frequencies on a sphere: slices alike in every direction), anisotropic (one "
+                            "orientation, measured from the photo: wood, brushed metal) or hybrid (frequencies in the "
+                            "(u, v) plane)"}),
+             number_option("impulses", 1, 256, {"16", "impulses", "impulses per kernel (quality vs speed; ~16 looks Gaussian)"}),
+             bandwidth});
+    }
+
+    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
+    {
+        return std::make_unique<GaborTexture>(description);
+    }
+    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
+    {
+        return std::make_unique<GaborTexture>(description, period);
+    }
+
+    std::string describe(const TextureDescription& d) const override
+    {
+        std::ostringstream out;
+        const GaborParameters& g = parameters(d);
+        out << "gabor        " << to_string(g.kind);
+        if (g.kind != GaborKind::isotropic)
+            out << format(g.kind == GaborKind::anisotropic ? ", frequency direction (%.3f, %.3f, %.3f)"
+                                                           : ", frequency plane normal (%.3f, %.3f, %.3f)",
+                          g.direction[0], g.direction[1], g.direction[2]);
+        out << "; bandwidth a/F " << format("%.3g", g.bandwidth) << ", " << format("%.3g", g.impulses_per_kernel)
+            << " impulses per kernel\n";
+        out << "octave  cycles/px  wavelength px  kernel radius px     w[0]      w[1]      w[2]\n";
+        for (std::size_t k = 0; k < g.frequencies.size(); ++k) {
+            const double f = g.frequencies[k];
+            out << format("%6.0f  %9.5f  %13.1f", double(k), f, 1 / f)
+                << format("  %16.1f", GaborNoise::support_radius(g.bandwidth * f))
+                << format("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]) << "\n";
+        }
+        for (int c = 0; c < 3; ++c)
+            out << "sigma_M[" << c << "]   " << format("%.5f", gabor_channel_sigma(g.weights[c]))
+                << " (octaves have unit variance, 2D and sliced)\n";
+        return out.str();
+    }
+
+    ModelParameters fit(const FitInput& input, Provenance& provenance) const override
+    {
+        const std::map<std::string, std::string>& options = input.model_options;
+        GaborFitOptions fit;
+        fit.kind = gabor_kind_from_string(options.at("gabor-kind"));
+        fit.impulses_per_kernel = std::stod(options.at("impulses"));
+        fit.bandwidth = options.at("bandwidth") == "auto" ? 0 : std::stod(options.at("bandwidth"));
+        fit.octaves = input.band_count;
+        // (The PSD estimator is the wavelet fit's: not recorded.)
+        provenance.options.insert(provenance.options.end(), {{"octaves", std::to_string(input.band_count)},
+                                                             {"gabor_kind", options.at("gabor-kind")},
+                                                             {"impulses", recorded_option(options, "impulses")},
+                                                             {"bandwidth", recorded_option(options, "bandwidth")}});
+        return fit_gabor_octaves(input.channels, input.width, input.height, fit);
+    }
+
+    /// k-th octave to k-th octave, frequencies and bandwidth geometrically (a morph between 0.1
+    /// and 0.4 cycles per pixel passes through 0.2), weights linearly, the direction by
+    /// normalised lerp after aligning signs (ω and −ω describe the same random-phase noise).
+    ModelParameters morph(const TextureDescription& da, const TextureDescription& db, double t) const override
+    {
+        const GaborParameters& a = parameters(da);
+        const GaborParameters& b = parameters(db);
+        if (a.kind != b.kind)
+            throw Error(std::string("morph: Gabor kinds differ (") + to_string(a.kind) + " vs " + to_string(b.kind) + ")");
+        GaborParameters result = a;
+        result.bandwidth = std::exp(lerp(std::log(a.bandwidth), std::log(b.bandwidth), t));
+        result.impulses_per_kernel = lerp(a.impulses_per_kernel, b.impulses_per_kernel, t);
+        const double sign =
+            a.direction[0] * b.direction[0] + a.direction[1] * b.direction[1] + a.direction[2] * b.direction[2] < 0 ? -1 : 1;
+        double length = 0;
+        for (int i = 0; i < 3; ++i) {
+            result.direction[i] = lerp(a.direction[i], sign * b.direction[i], t);
+            length += result.direction[i] * result.direction[i];
+        }
+        for (double& d : result.direction) d /= std::sqrt(length);
+        // A missing octave has weight 0 at the other texture's frequency.
+        const std::size_t count = std::max(a.frequencies.size(), b.frequencies.size());
+        result.frequencies.resize(count);
+        for (std::size_t k = 0; k < count; ++k) {
+            const double fa = k < a.frequencies.size() ? a.frequencies[k] : b.frequencies[k];
+            const double fb = k < b.frequencies.size() ? b.frequencies[k] : a.frequencies[k];
+            result.frequencies[k] = std::exp(lerp(std::log(fa), std::log(fb), t));
+        }
+        for (int c = 0; c < 3; ++c) {
+            result.weights[c].assign(count, 0.0);
+            for (std::size_t k = 0; k < count; ++k)
+                result.weights[c][k] = lerp(k < a.weights[c].size() ? a.weights[c][k] : 0.0,
+                                            k < b.weights[c].size() ? b.weights[c][k] : 0.0, t);
+        }
+        return result;
+    }
+
+    double channel_sigma(const TextureDescription& description, int channel) const override
+    {
+        return gabor_channel_sigma(parameters(description).weights[channel]);
+    }
+};
+
+}  // namespace
+
+const Model& gabor_model()
+{
+    static const GaborModel model;
+    return model;
+}
+
+}  // namespace stochtex

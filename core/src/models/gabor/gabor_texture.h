@@ -1,0 +1,66 @@
+// Random-phase Gabor noise octaves by example (paper 001's texture model, Fig. 6/7): the texture.
+//
+//   m_c(x) = Σ_k w_ck · n_k(x)      per decorrelated channel c, then ColourMapping,
+// n_k the unit-variance noise of octave k (gabor_noise.h) with frequency F_k and bandwidth
+// a_k = bandwidth · F_k, in exemplar pixels. The three channels of an octave share impulses and
+// have independent phases (uncorrelated; identical in the rgb-shared colour mode).
+//
+// Filtering is the noise's own analytic filter (no band clamping): the 2D footprint, or the
+// solid footprint projected on the tangent plane, becomes the pixel Gaussian's covariance, less
+// that of one exemplar pixel: the photo's pixels already blurred what the octaves were fitted to,
+// so a render at the photo's scale is not blurred twice (it shows the photo's spectrum, as the
+// wavelet model's does), and coarser footprints add exactly the blur that is missing. Only
+// when a filtered kernel's support would grow past 8× its area (the octave then keeps at most
+// 1/8 of its variance, far less for isotropic footprints) is the octave faded out, to bound the
+// cost. With histogram maps, the variance that
+// filtering and fading removed — known analytically (gabor_statistics.h) — goes to
+// ColourMapping, so minification converges to the texture's true mean.
+//
+// Periodic form: the 2D impulse lattice wraps (whole cells per period), which makes the kernel
+// sum itself periodic — no frequency has to be snapped. Octaves whose kernels are wider than
+// half the period cannot wrap and count as filtered away.
+#pragma once
+
+#include "colour/colour_mapping.h"
+#include "models/gabor/gabor_noise.h"
+
+#include <stochtex/texture.h>
+
+#include <vector>
+
+namespace stochtex {
+
+/// σ_M of one channel: the octaves have unit variance, so sqrt(Σ_k w_k²).
+double gabor_channel_sigma(const std::vector<double>& weights);
+
+/// The noise parameters of octave k of a description (units: exemplar pixels).
+GaborNoiseParameters gabor_octave(const TextureDescription& description, std::size_t k);
+
+class GaborTexture final : public Texture {
+public:
+    explicit GaborTexture(const TextureDescription& description);
+    /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
+    GaborTexture(const TextureDescription& description, const Vec2& period);
+
+    Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
+    Rgb eval_solid(const SurfacePoint& point) const override;
+    Rgb mean() const override { return colour_.mean(); }
+
+private:
+    GaborTexture(const TextureDescription& description, const Vec2* period);
+    template <class OctaveNoise>
+    Rgb synthesize(const Symmetric2& footprint, const TangentFrame& frame, const OctaveNoise& octave_noise) const;
+
+    struct Octave {
+        GaborNoise noise;
+        std::array<double, 3> weight;
+    };
+    std::vector<Octave> octaves_;
+    /// Octaves a periodic texture cannot hold: their weights count as filtered away.
+    std::vector<std::array<double, 3>> missing_weights_;
+    std::array<double, 3> sigma_m_{};
+    bool tracks_dropped_variance_ = false;  // only histogram maps need it
+    ColourMapping colour_;
+};
+
+}  // namespace stochtex

@@ -1,0 +1,316 @@
+#include "models/lrp/lrp_spectrum_sampling.h"
+
+#include "models/lrp/lrp_window.h"
+#include "numerics/random.h"
+
+#include <stochtex/error.h>
+#include <stochtex/models/lrp_parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace stochtex {
+
+namespace {
+
+/// Energy left out with the weakest bins (see the header).
+constexpr double left_out_tail = 1e-3;
+/// Share of the scaled window's energy the erosion radius holds (paper §4.3, "empirical").
+constexpr double erosion_energy = 0.75;
+/// k-means runs on at most this many bins (a random subset); all bins are assigned at the end.
+constexpr std::size_t kmeans_sample_limit = 20000;
+constexpr int kmeans_iterations = 30;
+
+struct Point {
+    double x, y;
+    double weight = 1;
+};
+
+double distance2(const Point& a, const Point& b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); }
+
+std::size_t nearest(const std::vector<Point>& centres, const Point& p)
+{
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::max();
+    for (std::size_t c = 0; c < centres.size(); ++c) {
+        const double d = distance2(centres[c], p);
+        if (d < best_d) best_d = d, best = c;
+    }
+    return best;
+}
+
+/// Lloyd's k-means with k-means++ seeding (the paper's "random seeding", made robust); k ≤ the
+/// number of points. Returns each point's cluster.
+std::vector<std::size_t> kmeans(const std::vector<Point>& points, std::size_t k, SplitMix64& rng)
+{
+    std::vector<Point> sample = points;
+    if (sample.size() > kmeans_sample_limit) {
+        for (std::size_t i = 0; i < kmeans_sample_limit; ++i)
+            std::swap(sample[i], sample[i + std::size_t(rng.uniform() * double(sample.size() - i))]);
+        sample.resize(kmeans_sample_limit);
+    }
+    std::vector<Point> centres{sample[std::size_t(rng.uniform() * double(sample.size()))]};
+    std::vector<double> d2(sample.size());
+    while (centres.size() < k) {
+        double sum = 0;
+        for (std::size_t i = 0; i < sample.size(); ++i)
+            sum += d2[i] = sample[i].weight * distance2(sample[i], centres[nearest(centres, sample[i])]);
+        if (!(sum > 0)) break;  // fewer distinct points than k
+        double pick = rng.uniform() * sum;
+        std::size_t chosen = 0;
+        while (chosen + 1 < sample.size() && (pick -= d2[chosen]) > 0) ++chosen;
+        centres.push_back(sample[chosen]);
+    }
+    std::vector<std::size_t> assignment(sample.size(), 0);
+    for (int iteration = 0; iteration < kmeans_iterations; ++iteration) {
+        bool changed = iteration == 0;
+        for (std::size_t i = 0; i < sample.size(); ++i) {
+            const std::size_t c = nearest(centres, sample[i]);
+            changed |= c != assignment[i];
+            assignment[i] = c;
+        }
+        if (!changed) break;
+        std::vector<Point> sum(centres.size(), Point{0, 0, 0});
+        for (std::size_t i = 0; i < sample.size(); ++i) {
+            Point& s = sum[assignment[i]];
+            s.x += sample[i].weight * sample[i].x, s.y += sample[i].weight * sample[i].y, s.weight += sample[i].weight;
+        }
+        for (std::size_t c = 0; c < centres.size(); ++c)
+            if (sum[c].weight > 0) centres[c] = {sum[c].x / sum[c].weight, sum[c].y / sum[c].weight};
+    }
+    std::vector<std::size_t> result(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) result[i] = nearest(centres, points[i]);
+    return result;
+}
+
+/// Squared Euclidean distance transform in 1D (Felzenszwalb–Huttenlocher): f holds 0 outside the
+/// set and +∞ inside; on return, each entry's squared distance to the nearest outside sample.
+void distance_transform_1d(std::vector<double>& f)
+{
+    const std::size_t n = f.size();
+    std::vector<double> result(n), z(n + 1);
+    std::vector<std::size_t> v(n);
+    std::size_t k = 0;
+    std::size_t first = 0;
+    while (first < n && !std::isfinite(f[first])) ++first;
+    if (first == n) return;  // nothing outside on this line: leave +∞
+    v[0] = first;
+    z[0] = -std::numeric_limits<double>::infinity();
+    z[1] = std::numeric_limits<double>::infinity();
+    for (std::size_t q = first + 1; q < n; ++q) {
+        if (!std::isfinite(f[q])) continue;
+        double s;
+        while (true) {
+            const double p = double(v[k]);
+            s = ((f[q] + double(q) * double(q)) - (f[v[k]] + p * p)) / (2.0 * (double(q) - p));
+            if (s <= z[k] && k > 0) {
+                --k;
+                continue;
+            }
+            break;
+        }
+        ++k;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = std::numeric_limits<double>::infinity();
+    }
+    k = 0;
+    for (std::size_t q = 0; q < n; ++q) {
+        while (z[k + 1] < double(q)) ++k;
+        const double d = double(q) - double(v[k]);
+        result[q] = d * d + f[v[k]];
+    }
+    f = result;
+}
+
+/// Distance of every bin of `mask` (a size² grid) to the nearest bin outside it; the grid's
+/// surroundings count as outside (nothing lies beyond Nyquist).
+std::vector<double> distance_to_outside(const std::vector<char>& mask, int size)
+{
+    const int padded = size + 2;
+    std::vector<double> grid(std::size_t(padded) * padded, 0.0);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            if (mask[std::size_t(y) * size + x]) grid[std::size_t(y + 1) * padded + x + 1] = std::numeric_limits<double>::infinity();
+    std::vector<double> line(padded);
+    for (int y = 0; y < padded; ++y) {
+        for (int x = 0; x < padded; ++x) line[x] = grid[std::size_t(y) * padded + x];
+        distance_transform_1d(line);
+        for (int x = 0; x < padded; ++x) grid[std::size_t(y) * padded + x] = line[x];
+    }
+    for (int x = 0; x < padded; ++x) {
+        for (int y = 0; y < padded; ++y) line[y] = grid[std::size_t(y) * padded + x];
+        distance_transform_1d(line);
+        for (int y = 0; y < padded; ++y) grid[std::size_t(y) * padded + x] = line[y];
+    }
+    std::vector<double> distance(std::size_t(size) * size, 0.0);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) distance[std::size_t(y) * size + x] = std::sqrt(grid[std::size_t(y + 1) * padded + x + 1]);
+    return distance;
+}
+
+/// The paper's erosion, "modified so that strata smaller than δ are not completely swept out":
+/// per 8-connected component, keep the bins at distance ≥ min(δ, the component's deepest bin).
+std::vector<char> erode(const std::vector<char>& mask, int size, double delta)
+{
+    const std::vector<double> distance = distance_to_outside(mask, size);
+    std::vector<char> kept(mask.size(), 0);
+    std::vector<int> component(mask.size(), -1);
+    std::vector<std::size_t> members, stack;
+    int next_component = 0;
+    for (std::size_t start = 0; start < mask.size(); ++start) {
+        if (!mask[start] || component[start] >= 0) continue;
+        members.clear();
+        stack.assign(1, start);
+        component[start] = next_component;
+        double deepest = 0;
+        while (!stack.empty()) {
+            const std::size_t i = stack.back();
+            stack.pop_back();
+            members.push_back(i);
+            deepest = std::max(deepest, distance[i]);
+            const int x = int(i % std::size_t(size)), y = int(i / std::size_t(size));
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= size || ny >= size) continue;
+                    const std::size_t j = std::size_t(ny) * size + nx;
+                    if (mask[j] && component[j] < 0) component[j] = next_component, stack.push_back(j);
+                }
+        }
+        ++next_component;
+        const double threshold = std::min(delta, deepest);
+        for (std::size_t i : members) kept[i] = distance[i] >= threshold;
+    }
+    return kept;
+}
+
+double window_spacing(int size, int terms, std::size_t bins, const LrpSamplingOptions& options)
+{
+    if (options.spacing > 0) return options.spacing;
+    return std::clamp(size * std::sqrt(options.coverage * terms / double(bins)), 1.0, double(size));
+}
+
+}  // namespace
+
+StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
+                                     const std::array<const DiscreteSpectrum*, 3>& channels,
+                                     const std::vector<char>& excluded, const LrpSamplingOptions& options)
+{
+    const int size = partition.size;
+    if (options.strata < 1 || options.cosines < 1 || options.representatives < 1)
+        throw Error("stratify_spectrum: strata, cosines and representatives must be positive");
+    for (const DiscreteSpectrum* channel : channels)
+        if (channel && channel->size != size) throw Error("stratify_spectrum: channel spectra differ in size");
+
+    // Half-plane representatives: a bin whose index is not below its mirror's.
+    struct Bin {
+        int kx, ky;
+        double power;  // density of the partition spectrum
+        double multiplicity;
+    };
+    std::vector<Bin> bins;
+    double total = 0;
+    for (int ky = -size / 2; ky < size / 2; ++ky)
+        for (int kx = -size / 2; kx < size / 2; ++kx) {
+            if (kx == 0 && ky == 0) continue;
+            const std::size_t i = partition.index(kx, ky), m = partition.index(mirror_bin(kx, size), mirror_bin(ky, size));
+            if (i < m || (!excluded.empty() && excluded[i])) continue;
+            const double multiplicity = i == m ? 1 : 2;
+            const double power = partition.power[i];
+            if (!(power > 0)) continue;
+            bins.push_back({kx, ky, power, multiplicity});
+            total += power * multiplicity;
+        }
+    StratifiedSpectrum result;
+    result.label.assign(partition.power.size(), -1);
+    if (!(total > 0)) return result;
+    std::sort(bins.begin(), bins.end(), [](const Bin& a, const Bin& b) { return a.power > b.power; });
+    double tail = 0;
+    while (!bins.empty() && tail + bins.back().power * bins.back().multiplicity <= left_out_tail * total) {
+        tail += bins.back().power * bins.back().multiplicity;
+        bins.pop_back();
+    }
+    const double kept_energy = total - tail;
+
+    // Equal-energy strata over the sorted densities (§4.2): a bin goes where the middle of its
+    // energy falls, so a peak holding more than 1/L of the energy empties the next stratum.
+    std::vector<std::vector<const Bin*>> members(std::size_t(options.strata));
+    double cumulative = 0;
+    for (const Bin& bin : bins) {
+        const double energy = bin.power * bin.multiplicity;
+        const int s = std::min(options.strata - 1, int(options.strata * (cumulative + 0.5 * energy) / kept_energy));
+        members[std::size_t(s)].push_back(&bin);
+        cumulative += energy;
+    }
+    members.erase(std::remove_if(members.begin(), members.end(), [](const auto& m) { return m.empty(); }), members.end());
+
+    const int count = int(members.size());
+    const double erosion_radius = lrp_window_spread_1d(erosion_energy);  // cycles per spacing
+    for (int s = 0; s < count; ++s) {
+        const std::vector<const Bin*>& stratum = members[std::size_t(s)];
+        int terms = options.cosines / count + (s < options.cosines % count ? 1 : 0);
+        if (terms < 1) continue;  // more strata than cosines: the weakest go unsampled
+        LrpStratum out;
+        std::vector<char> mask(partition.power.size(), 0);
+        for (const Bin* bin : stratum) {
+            const std::size_t i = partition.index(bin->kx, bin->ky);
+            mask[i] = mask[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] = 1;
+            result.label[i] = result.label[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] =
+                int(result.strata.size());
+            for (int c = 0; c < 3; ++c)
+                if (channels[c]) out.sigma[c] += channels[c]->power[i] * bin->multiplicity;
+        }
+        for (double& sigma : out.sigma) sigma = std::sqrt(sigma);
+
+        // Shrink (§4.3) so that the windows' spectra stay inside the stratum, then k-means.
+        const double spacing = window_spacing(size, terms, stratum.size(), options);
+        const std::vector<char> kept = erode(mask, size, erosion_radius * size / spacing);
+        std::vector<Point> points;
+        for (const Bin* bin : stratum)
+            if (kept[partition.index(bin->kx, bin->ky)])
+                // The row −T/2 is the aliased +T/2: placed there it neighbours its half-plane.
+                points.push_back({double(bin->kx), double(bin->ky == -size / 2 ? size / 2 : bin->ky),
+                                  options.power_weighted ? bin->power : 1.0});
+        terms = std::min<int>(terms, int(points.size()));
+        out.spacing = window_spacing(size, terms, stratum.size(), options);
+        SplitMix64 rng(mix_seed(options.seed, std::uint64_t(s), 0x1a2b));
+        const std::vector<std::size_t> cluster = kmeans(points, std::size_t(terms), rng);
+        std::vector<std::vector<Point>> substrata(static_cast<std::size_t>(terms));
+        for (std::size_t i = 0; i < points.size(); ++i) substrata[cluster[i]].push_back(points[i]);
+        for (std::vector<Point>& substratum : substrata) {
+            if (substratum.empty()) continue;
+            std::vector<Point> chosen;
+            if (substratum.size() <= std::size_t(options.representatives)) {
+                chosen = substratum;
+            } else {
+                // Spread-out representatives: centres of a small k-means, snapped to bins.
+                const std::vector<std::size_t> part = kmeans(substratum, std::size_t(options.representatives), rng);
+                for (std::size_t r = 0; r < std::size_t(options.representatives); ++r) {
+                    Point centre{0, 0, 0};
+                    for (std::size_t i = 0; i < substratum.size(); ++i)
+                        if (part[i] == r) {
+                            const Point& p = substratum[i];
+                            centre.x += p.weight * p.x, centre.y += p.weight * p.y, centre.weight += p.weight;
+                        }
+                    if (!(centre.weight > 0)) continue;
+                    centre = {centre.x / centre.weight, centre.y / centre.weight};
+                    chosen.push_back(substratum[nearest(substratum, centre)]);
+                }
+            }
+            std::vector<int> flat;
+            for (const Point& p : chosen) {
+                // Fold the row +T/2 back onto −T/2, its stored name.
+                flat.push_back(int(p.x));
+                flat.push_back(int(p.y) == size / 2 ? -size / 2 : int(p.y));
+            }
+            out.substrata.push_back(std::move(flat));
+        }
+        result.strata.push_back(std::move(out));
+    }
+    return result;
+}
+
+}  // namespace stochtex

@@ -1,0 +1,261 @@
+#include "models/lrp/lrp_texture.h"
+#include <stochtex/models/lrp_parameters.h>
+
+#include "models/lrp/lrp_parameters.h"
+#include "numerics/random.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace stochtex {
+
+namespace {
+
+std::array<double, 3> channel_sigmas(const LrpParameters& parameters, const std::optional<LrpStructureNoise>& structure)
+{
+    std::array<double, 3> variance = structure ? structure->variance() : std::array<double, 3>{};
+    for (const LrpStratum& stratum : parameters.strata)
+        for (int c = 0; c < 3; ++c) variance[std::size_t(c)] += stratum.sigma[std::size_t(c)] * stratum.sigma[std::size_t(c)];
+    return {std::sqrt(variance[0]), std::sqrt(variance[1]), std::sqrt(variance[2])};
+}
+
+std::optional<LrpStructureNoise> make_structure(const TextureDescription& description, const std::array<double, 2>& period)
+{
+    const LrpParameters& lrp = description.parameters.get<LrpParameters>();
+    if (!lrp.structure) return std::nullopt;
+    LrpStructureNoise::Options options;
+    options.seed = description.seed;
+    options.period = period;
+    return LrpStructureNoise(*lrp.structure, lrp.spectrum_size, lrp.strata, options);
+}
+
+std::array<double, 2> period_in_pixels(const TextureDescription& description, const Vec2* period)
+{
+    if (!period) return {0, 0};
+    return {(*period)[0] * description.pixels_per_unit, (*period)[1] * description.pixels_per_unit};
+}
+
+}  // namespace
+
+LrpTexture::LrpTexture(const TextureDescription& description) : LrpTexture(description, nullptr) {}
+
+LrpTexture::LrpTexture(const TextureDescription& description, const Vec2& period) : LrpTexture(description, &period) {}
+
+LrpTexture::LrpTexture(const TextureDescription& description, const Vec2* period)
+    : Texture(description),
+      structure_(make_structure(description, period_in_pixels(description, period))),
+      sigma_m_(channel_sigmas(description.parameters.get<LrpParameters>(), structure_)),
+      tracks_dropped_variance_(std::any_of(description.histograms.begin(), description.histograms.end(),
+                                           [](const HistogramMap& map) { return map.enabled(); })),
+      colour_(description, sigma_m_)
+{
+    const LrpParameters& lrp = description.parameters.get<LrpParameters>();
+    for (std::size_t s = 0; s < lrp.strata.size(); ++s) {
+        LrpStratumNoise::Options options;
+        options.seed = mix_seed(description.seed, s, 0x1e9);
+        options.shared_phase = description.colour_mode == ColourMode::rgb_shared;
+        options.period = period_in_pixels(description, period);
+        strata_.emplace_back(lrp.strata[s], lrp.spectrum_size, options);
+    }
+}
+
+std::array<double, 3> LrpTexture::dropped_sigma(const LrpFilter& filter) const
+{
+    if (!tracks_dropped_variance_ || filter.identity) return {0, 0, 0};
+    std::array<double, 3> dropped{};
+    for (const LrpStratumNoise& stratum : strata_) {
+        const double lost = stratum.survives(filter) ? 1 - stratum.kept_variance_fraction(filter) : 1;
+        for (int c = 0; c < 3; ++c) dropped[std::size_t(c)] += lost * stratum.variance()[std::size_t(c)];
+    }
+    if (structure_) {
+        const std::array<double, 3> kept = structure_->kept_variance_fraction(filter);
+        for (int c = 0; c < 3; ++c) dropped[std::size_t(c)] += (1 - kept[std::size_t(c)]) * structure_->variance()[std::size_t(c)];
+    }
+    for (int c = 0; c < 3; ++c)
+        dropped[std::size_t(c)] = sigma_m_[std::size_t(c)] > 0 ? std::sqrt(std::max(0.0, dropped[std::size_t(c)])) / sigma_m_[std::size_t(c)] : 0;
+    return dropped;
+}
+
+Rgb LrpTexture::finish(const float m[3], const std::array<double, 3>& dropped) const
+{
+    std::array<double, 3> z{};
+    for (int c = 0; c < 3; ++c)
+        if (sigma_m_[std::size_t(c)] > 0) z[std::size_t(c)] = double(m[c]) / sigma_m_[std::size_t(c)];
+    return colour_.to_rgb(z, dropped);
+}
+
+Rgb LrpTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
+{
+    const double ppu = description().pixels_per_unit;
+    const LrpFilter filter = LrpFilter::from_footprint(footprint, ppu);
+    const double x = uv[0] * ppu, y = uv[1] * ppu;
+    float m[3] = {0, 0, 0};
+    for (const LrpStratumNoise& stratum : strata_) {
+        if (!stratum.survives(filter)) continue;
+        float value[3];
+        stratum.eval(x, y, filter, value);
+        for (int c = 0; c < 3; ++c) m[c] += value[c];
+    }
+    if (structure_) {
+        float value[3];
+        structure_->eval(x, y, filter, value);
+        for (int c = 0; c < 3; ++c) m[c] += value[c];
+    }
+    return finish(m, dropped_sigma(filter));
+}
+
+namespace {
+
+/// A stratum with its lattice points' terms drawn once for a raster region, when the region is
+/// dense enough for that to pay (a coarse MIP level spans many lattice cells per pixel: those
+/// draw per pixel, as eval() does).
+struct RegionStratum {
+    const LrpStratumNoise* noise = nullptr;
+    LrpFilter filter;
+    bool cached = false;
+    LrpTermCache terms;
+
+    RegionStratum(const LrpStratumNoise& stratum, const LrpFilter& f, const double x_ends[2], const double y_ends[2],
+                  std::size_t pixels)
+        : noise(&stratum), filter(f)
+    {
+        const LrpLattice& lattice = stratum.lattice();
+        const std::int64_t i0 = std::min(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) - 1;
+        const std::int64_t i1 = std::max(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) + 1;
+        const std::int64_t j0 = std::min(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) - 1;
+        const std::int64_t j1 = std::max(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) + 1;
+        cached = double(i1 - i0 + 1) * double(j1 - j0 + 1) <= 4.0 * double(pixels) + 64;
+        if (cached)
+            terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
+                       [&](std::int64_t i, std::int64_t j, LrpTerms& out) { stratum.draw(i, j, filter, out); });
+    }
+    /// Exactly eval()'s value: the same terms, summed the same way.
+    void eval(double x, double y, float out[3]) const
+    {
+        if (!cached) return noise->eval(x, y, filter, out);
+        sum_windows(noise->lattice(), noise->normalisation(), x, y, [&](std::int64_t a, std::int64_t b) { return terms.at(a, b); },
+                    out);
+    }
+};
+
+}  // namespace
+
+void LrpTexture::eval_region(const RasterRegion& region, float* rgb) const
+{
+    // eval() at every pixel with each lattice point's terms drawn once for the region (and the
+    // structure's blocks filtered once): the same terms and the same sums, so bit-identical.
+    const double ppu = description().pixels_per_unit;
+    const LrpFilter filter = LrpFilter::from_footprint(region.footprint, ppu);
+    const std::array<double, 3> dropped = dropped_sigma(filter);
+    const std::size_t pixels = std::size_t(region.width) * region.height;
+    if (pixels == 0) return;
+    const double x_ends[2] = {region.u(0) * ppu, region.u(region.width - 1) * ppu};
+    const double y_ends[2] = {region.v(0) * ppu, region.v(region.height - 1) * ppu};
+
+    std::vector<RegionStratum> strata;
+    for (const LrpStratumNoise& stratum : strata_)
+        if (stratum.survives(filter)) strata.emplace_back(stratum, filter, x_ends, y_ends, pixels);
+    LrpTermCache blocks;
+    std::vector<RegionStratum> turbulence[2];
+    const bool cache_blocks = structure_ && double(structure_->block_count()) <= 4.0 * double(pixels) + 64;
+    if (cache_blocks)
+        blocks.fill(0, 0, structure_->block_count(), 1,
+                    [&](std::int64_t b, std::int64_t, LrpTerms& terms) { structure_->draw_block(int(b), filter, terms); });
+    if (structure_)
+        for (int component = 0; component < 2; ++component)
+            for (const LrpStratumNoise& stratum : structure_->turbulence_strata(component))
+                turbulence[component].emplace_back(stratum, LrpFilter{}, x_ends, y_ends, pixels);
+
+    for (int j = 0; j < region.height; ++j)
+        for (int i = 0; i < region.width; ++i) {
+            const double x = region.u(i) * ppu, y = region.v(j) * ppu;
+            float m[3] = {0, 0, 0};
+            for (const RegionStratum& stratum : strata) {
+                float value[3];
+                stratum.eval(x, y, value);
+                for (int c = 0; c < 3; ++c) m[c] += value[c];
+            }
+            if (structure_) {
+                float value[3];
+                auto turbulence_of = [&](int component, std::size_t k, double px, double py, float out[3]) {
+                    turbulence[component][k].eval(px, py, out);
+                };
+                if (cache_blocks)
+                    structure_->eval_with(x, y, [&](int b) { return blocks.at(b, 0); }, turbulence_of, value);
+                else
+                    structure_->eval(x, y, filter, value);
+                for (int c = 0; c < 3; ++c) m[c] += value[c];
+            }
+            const Rgb value = finish(m, dropped);
+            std::copy(value.begin(), value.end(), rgb + 3 * (std::size_t(j) * region.width + i));
+        }
+}
+
+Rgb LrpTexture::eval_solid(const SurfacePoint& point) const
+{
+    const Footprint2D footprint{point.dpdx[0], point.dpdx[1], point.dpdy[0], point.dpdy[1]};
+    return eval({point.p[0], point.p[1]}, footprint);
+}
+
+LrpCost LrpTexture::cost() const
+{
+    LrpCost cost;
+    for (const LrpStratumNoise& stratum : strata_) cost.paper_calls += 9.0 * (stratum.term_count() + 1);
+    cost.total_calls = cost.paper_calls;
+    if (structure_) {
+        int largest = 0;
+        for (const LrpBlock& block : description().parameters.get<LrpParameters>().structure->blocks) largest = std::max(largest, int(block.frequencies.size() / 2));
+        // One block is one periodic function: no windows (lrp_structure_noise.h).
+        const double structure_calls = structure_->block_count() == 1 ? largest : 9.0 * (largest + 1);
+        cost.paper_calls += structure_calls;
+        cost.total_calls += structure_calls * structure_->mean_evaluations_per_point();
+        // Turbulence: two displacement components, each strata of windows and cosines.
+        cost.total_calls += 9.0 * structure_->turbulence_terms() +
+                            (structure_->turbulence_terms() > 0 ? 9.0 * 2 * std::min<std::size_t>(2, strata_.size()) : 0);
+    }
+    return cost;
+}
+
+std::string describe_lrp(const TextureDescription& description)
+{
+    const LrpParameters& lrp = description.parameters.get<LrpParameters>();
+    const LrpTexture texture(description);
+    const LrpCost cost = texture.cost();
+    std::ostringstream out;
+    char line[256];
+    auto print = [&](const char* pattern, auto... values) {
+        std::snprintf(line, sizeof line, pattern, values...);
+        out << line;
+    };
+    int random_cosines = 0;
+    for (const LrpStratum& stratum : lrp.strata) random_cosines += int(stratum.substrata.size());
+    print("lrp          spectrum %d² (bins of 1/%d cycle per exemplar px); %zu strata, %d random-phase cosines per window\n",
+          lrp.spectrum_size, lrp.spectrum_size, lrp.strata.size(), random_cosines);
+    print("cost         9(J + s) = %.0f special-function calls per sample; %.0f with placement blends and turbulence\n",
+          cost.paper_calls, cost.total_calls);
+    out << "stratum  spacing px  cosines  stored bins   sigma[0]   sigma[1]   sigma[2]\n";
+    for (std::size_t s = 0; s < lrp.strata.size(); ++s) {
+        const LrpStratum& stratum = lrp.strata[s];
+        std::size_t bins = 0;
+        for (const auto& substratum : stratum.substrata) bins += substratum.size() / 2;
+        print("%7zu  %10.1f  %7zu  %11zu  %9.5f  %9.5f  %9.5f\n", s, stratum.spacing, stratum.substrata.size(), bins,
+              stratum.sigma[0], stratum.sigma[1], stratum.sigma[2]);
+    }
+    if (lrp.structure) {
+        const LrpStructure& r = *lrp.structure;
+        std::size_t largest = 0;
+        for (const LrpBlock& block : r.blocks) largest = std::max(largest, block.frequencies.size() / 2);
+        const int per_side = lrp.spectrum_size / r.block_size;
+        print("structure    fixed phases: %dx%d blocks of %d px (fitted on %d px), up to %zu cosines each; random placement "
+              "%s; turbulence %.2f px\n",
+              per_side, per_side, r.block_size, r.fit_size, largest, r.random_placement ? "on" : "off", r.turbulence);
+    } else {
+        out << "structure    none (noise by example only, r = 0)\n";
+    }
+    for (int c = 0; c < 3; ++c) print("sigma_M[%d]   %.5f\n", c, texture.sigma_m()[std::size_t(c)]);
+    return out.str();
+}
+
+}  // namespace stochtex

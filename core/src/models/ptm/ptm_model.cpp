@@ -1,0 +1,64 @@
+// The ptm model (paper 004) in the registry: its parameter schema (ptm_stex_fields), the
+// coefficient file beside the .stex, the light direction and `stex info` lines. PTMs are fitted
+// from photos under known lights (`stex ptm fit`, ptm_fit), not from one photo.
+#include "models/model.h"
+#include "models/ptm/ptm_stex_fields.h"
+#include "models/ptm/ptm_texture.h"
+
+#include <stochtex/models/ptm_parameters.h>
+
+namespace stochtex {
+
+namespace {
+
+ModelInfo ptm_info()
+{
+    ModelInfo info;
+    info.name = "ptm";
+    info.summary = "relightable polynomial texture maps (Malzbender et al.; Hel-Or et al.): fitted to photos under known "
+                   "lights, quilted in ψ-space, relit for any light";
+    info.doc = "docs/models/ptm.md";
+    info.capabilities.light_direction = true;
+    return info;
+}
+
+class PtmModel final : public ModelOf<PtmParameters> {
+public:
+    PtmModel() : ModelOf(ptm_info(), ptm_schema()) {}
+
+    void validate(const TextureDescription& description, const std::string& source) const override
+    {
+        validate_ptm_colour_fields(description, source);
+        ModelOf::validate(description, source);
+    }
+    TextureDescription write_beside(const std::string& stex_path, const TextureDescription& description) const override
+    {
+        return write_ptm_coefficients_beside(stex_path, description);
+    }
+
+    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
+    {
+        return std::make_unique<PtmTexture>(description);
+    }
+    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
+    {
+        return std::make_unique<PtmTexture>(description, period);
+    }
+    std::string describe(const TextureDescription& description) const override { return describe_ptm(description); }
+
+    Vec3 light(const TextureDescription& description) const override { return parameters(description).light; }
+    void set_light(TextureDescription& description, const Vec3& unit_direction) const override
+    {
+        description.parameters.get<PtmParameters>().light = unit_direction;
+    }
+};
+
+}  // namespace
+
+const Model& ptm_model()
+{
+    static const PtmModel model;
+    return model;
+}
+
+}  // namespace stochtex

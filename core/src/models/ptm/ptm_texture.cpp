@@ -1,0 +1,171 @@
+#include "models/ptm/ptm_texture.h"
+
+#include "models/ptm/ptm_functions.h"
+
+#include <stochtex/error.h>
+#include <stochtex/ptm.h>
+#include <stochtex/models/ptm_parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace stochtex {
+
+namespace {
+int wrap(long long i, int n) { return int(((i % n) + n) % n); }
+}  // namespace
+
+std::string describe_ptm(const TextureDescription& description)
+{
+    const PtmParameters& ptm = description.parameters.get<PtmParameters>();
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "ptm          %s, %dx%d texels of Legendre coefficients in %s\n"
+                  "light        (%.4f, %.4f, %.4f)  (x right, y up, z out; hint stex:light)\n",
+                  to_string(ptm.colour), ptm.maps->width(), ptm.maps->height(),
+                  ptm.coefficient_file.empty() ? "(not written yet)" : ptm.coefficient_file.c_str(), ptm.light[0],
+                  ptm.light[1], ptm.light[2]);
+    std::string out = text;
+    if (ptm.unbounded) {
+        std::snprintf(text, sizeof text,
+                      "unbounded    tiled and blended: triangle edge %.4g maps widths = %.1f texels, seed %u\n",
+                      ptm.triangle_edge, ptm.triangle_edge * std::min(ptm.maps->width(), ptm.maps->height()),
+                      unsigned(description.seed));
+        out += text;
+    }
+    return out;
+}
+
+PtmTexture::PtmTexture(const TextureDescription& description) : PtmTexture(description, nullptr) {}
+
+PtmTexture::PtmTexture(const TextureDescription& description, const Vec2& period) : PtmTexture(description, &period) {}
+
+PtmTexture::PtmTexture(const TextureDescription& description, const Vec2* period) : Texture(description)
+{
+    const PtmParameters& ptm = description.parameters.get<PtmParameters>();
+    const PtmMaps& maps = *ptm.maps;
+    basis_ = basis_at(ptm.light);
+    Level base{maps.width(), maps.height(), {}};
+    base.functions.resize(std::size_t(base.width) * base.height * floats_per_texel);
+    const int channels = maps.coefficients.channels;
+    for (std::size_t i = 0; i < maps.coefficients.pixel_count(); ++i) {
+        const auto functions = texel_colour_functions(maps.colour, &maps.coefficients.pixels[i * channels]);
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < legendre::term_count; ++k)
+                base.functions[i * floats_per_texel + c * legendre::term_count + k] = float(functions[c][k]);
+    }
+    levels_.push_back(std::move(base));
+    // Box filter, 2 × 2 texels (wrapping: an odd size pairs its last texel with the first).
+    while (levels_.back().width > 1 || levels_.back().height > 1) {
+        const Level& fine = levels_.back();
+        Level coarse{std::max(1, (fine.width + 1) / 2), std::max(1, (fine.height + 1) / 2), {}};
+        coarse.functions.assign(std::size_t(coarse.width) * coarse.height * floats_per_texel, 0.0f);
+        const int span_x = fine.width > 1 ? 2 : 1, span_y = fine.height > 1 ? 2 : 1;
+        for (int y = 0; y < coarse.height; ++y)
+            for (int x = 0; x < coarse.width; ++x) {
+                double sum[floats_per_texel] = {};
+                for (int j = 0; j < span_y; ++j)
+                    for (int i = 0; i < span_x; ++i) add_texel(fine, 2 * x + i, 2 * y + j, 1.0 / (span_x * span_y), sum);
+                std::copy(sum, sum + floats_per_texel, &coarse.functions[(std::size_t(y) * coarse.width + x) * floats_per_texel]);
+            }
+        levels_.push_back(std::move(coarse));
+    }
+    const double natural[2] = {maps.width() / description.pixels_per_unit, maps.height() / description.pixels_per_unit};
+    if (ptm.unbounded) {
+        const double edge = ptm.triangle_edge * std::min(maps.width(), maps.height());
+        if (period)
+            grid_.emplace(description.seed, edge, std::array<double, 2>{(*period)[0] * description.pixels_per_unit,
+                                                                         (*period)[1] * description.pixels_per_unit});
+        else
+            grid_.emplace(description.seed, edge);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+        texels_per_unit_[axis] = description.pixels_per_unit;
+        if (period && !grid_) {
+            const double repeats = std::max(1.0, std::round((*period)[axis] / natural[axis]));
+            texels_per_unit_[axis] *= repeats * natural[axis] / (*period)[axis];
+        }
+    }
+    std::array<legendre::Terms, 3> coarsest{};
+    for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < legendre::term_count; ++k)
+            coarsest[c][k] = levels_.back().functions[c * legendre::term_count + k];
+    mean_ = lit(coarsest);
+}
+
+void PtmTexture::add_texel(const Level& level, int x, int y, double weight, double* sum) const
+{
+    const float* texel =
+        &level.functions[(std::size_t(wrap(y, level.height)) * level.width + wrap(x, level.width)) * floats_per_texel];
+    for (int k = 0; k < floats_per_texel; ++k) sum[k] += weight * texel[k];
+}
+
+void PtmTexture::bilinear(const Level& level, double x, double y, double* sum, double weight) const
+{
+    // x, y in this level's texels with texel centres at half-integers.
+    const double fx = std::floor(x - 0.5), fy = std::floor(y - 0.5);
+    const double tx = x - 0.5 - fx, ty = y - 0.5 - fy;
+    const long long ix = (long long)fx, iy = (long long)fy;
+    add_texel(level, int(ix % level.width), int(iy % level.height), weight * (1 - tx) * (1 - ty), sum);
+    add_texel(level, int((ix + 1) % level.width), int(iy % level.height), weight * tx * (1 - ty), sum);
+    add_texel(level, int(ix % level.width), int((iy + 1) % level.height), weight * (1 - tx) * ty, sum);
+    add_texel(level, int((ix + 1) % level.width), int((iy + 1) % level.height), weight * tx * ty, sum);
+}
+
+void PtmTexture::trilinear(double x, double y, double lod, double* sum, double weight) const
+{
+    const int fine = int(lod);
+    const double t = lod - fine;
+    for (int level = fine; level <= std::min(fine + 1, int(levels_.size()) - 1); ++level) {
+        const double w = level == fine ? 1 - t : t;
+        if (w == 0) continue;
+        const Level& l = levels_[level];
+        bilinear(l, x * l.width / levels_[0].width, y * l.height / levels_[0].height, sum, weight * w);
+    }
+}
+
+std::array<legendre::Terms, 3> PtmTexture::functions(const Vec2& uv, double footprint_units) const
+{
+    const double x0 = uv[0] * texels_per_unit_[0], y0 = uv[1] * texels_per_unit_[1];
+    const double footprint = footprint_units * std::max(texels_per_unit_[0], texels_per_unit_[1]);
+    const double lod = std::clamp(std::log2(std::max(footprint, 1.0)), 0.0, double(levels_.size() - 1));
+    double sum[floats_per_texel] = {};
+    if (!grid_) {
+        trilinear(x0, y0, lod, sum, 1);
+    } else {
+        // ν + Σ w_i (f_i − ν): the tiles' functions with the grid's weights, one set for all fields.
+        const float* mean = levels_.back().functions.data();
+        double weights = 0;
+        for (const TileVertex& vertex : grid_->blend(x0, y0)) {
+            if (vertex.weight == 0) continue;
+            const std::array<double, 2> t = tile_position(vertex, x0, y0, levels_[0].width, levels_[0].height);
+            trilinear(t[0], t[1], lod, sum, vertex.weight);
+            weights += vertex.weight;
+        }
+        for (int k = 0; k < floats_per_texel; ++k) sum[k] += (1 - weights) * double(mean[k]);
+    }
+    std::array<legendre::Terms, 3> result{};
+    for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < legendre::term_count; ++k) result[c][k] = sum[c * legendre::term_count + k];
+    return result;
+}
+
+Rgb PtmTexture::lit(const std::array<legendre::Terms, 3>& functions) const
+{
+    Rgb rgb{};
+    for (int c = 0; c < 3; ++c) rgb[c] = float(std::max(0.0, legendre::dot(functions[c], basis_)));
+    return rgb;
+}
+
+Rgb PtmTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
+{
+    return lit(functions(uv, footprint.major_axis()));
+}
+
+Rgb PtmTexture::eval_solid(const SurfacePoint& point) const
+{
+    return lit(functions({point.p[0], point.p[1]}, point.major_axis()));
+}
+
+}  // namespace stochtex

@@ -1,0 +1,229 @@
+#include "models/tiling/colour_map_filter.h"
+
+#include <stochtex/error.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace stochtex {
+
+namespace {
+
+/// Uniform nodes on [−4, 4] standard deviations with normalised Gaussian weights: unlike
+/// Gauss–Hermite nodes they can be spaced finely enough that a discontinuous map is not
+/// sampled as a few isolated points.
+struct LineQuadrature {
+    std::vector<double> node, weight;
+    explicit LineQuadrature(int count)
+    {
+        double total = 0;
+        for (int k = 0; k < count; ++k) {
+            const double t = count == 1 ? 0.0 : -4 + 8.0 * k / (count - 1);
+            node.push_back(t);
+            weight.push_back(std::exp(-0.5 * t * t));
+            total += weight.back();
+        }
+        for (double& w : weight) w /= total;
+    }
+};
+
+const LineQuadrature& line_quadrature(int count)
+{
+    static const std::vector<LineQuadrature> rules = [] {
+        std::vector<LineQuadrature> r;
+        for (int n = 0; n <= 64; ++n) r.emplace_back(std::max(1, n));
+        return r;
+    }();
+    return rules[std::size_t(std::clamp(count, 1, 64))];
+}
+
+/// A Gaussian of σ texels sampled at `count` evenly spaced centres over an axis of n texels
+/// (n a multiple of count), clamped to the edge; σ < 0 means the full average. The centres all
+/// have the same fractional position, so one set of weights serves every output sample.
+struct AxisBlur {
+    int n = 0, count = 0, step = 0, first = 0;  // output s reads texels first + s·step + t
+    bool average = false;
+    std::vector<double> weight;
+
+    AxisBlur(int texels, double sigma, int samples) : n(texels), count(samples), step(texels / samples)
+    {
+        if (sigma < 0) {
+            average = true;
+            return;
+        }
+        if (sigma == 0) {  // the raw map, always at full resolution
+            weight = {1.0};
+            return;
+        }
+        const double centre = 0.5 * step - 0.5;
+        first = int(std::floor(centre - 4 * sigma));
+        const int last = int(std::ceil(centre + 4 * sigma));
+        double total = 0;
+        for (int t = first; t <= last; ++t) {
+            const double d = (t - centre) / sigma;
+            weight.push_back(std::exp(-0.5 * d * d));
+            total += weight.back();
+        }
+        for (double& w : weight) w /= total;
+    }
+
+    /// Blurs the line line[0], line[stride], … into out[0], out[out_stride], ….
+    template <class Out>
+    void apply(const double* line, std::size_t stride, Out* out, std::size_t out_stride) const
+    {
+        if (average) {
+            double sum = 0;
+            for (int t = 0; t < n; ++t) sum += line[std::size_t(t) * stride];
+            out[0] = Out(sum / n);
+            return;
+        }
+        for (int s = 0; s < count; ++s) {
+            double sum = 0;
+            const int start = first + s * step;
+            for (std::size_t t = 0; t < weight.size(); ++t)
+                sum += weight[t] * line[std::size_t(std::clamp(start + int(t), 0, n - 1)) * stride];
+            out[std::size_t(s) * out_stride] = Out(sum);
+        }
+    }
+};
+
+}  // namespace
+
+const char* to_string(ColourMapMethod method)
+{
+    switch (method) {
+    case ColourMapMethod::reference: return "reference";
+    case ColourMapMethod::interpolated: return "interpolated";
+    case ColourMapMethod::covariance: return "covariance";
+    }
+    return "?";
+}
+
+ColourMapFilter::ColourMapFilter(const std::vector<float>& rgb, int size) : size_(size)
+{
+    if (size < 8 || (size & (size - 1)) || rgb.size() != std::size_t(size) * size * 3)
+        throw Error("colour map: expected a square map whose side is a power of two ≥ 8");
+    levels_ = int(std::lround(std::log2(size))) + 1;
+    const int last = levels_ - 1;
+    auto sigma_of = [&](int k) { return k == last ? -1.0 : k == 0 ? 0.0 : std::ldexp(1.0, k - 1); };
+    // Two samples per σ are enough for a blurred map; the average needs one.
+    auto resolution_of = [&](int k) { return k == last ? 1 : k <= 2 ? size : size >> (k - 2); };
+
+    // Blur along a (x) first, per level, then along b (y) for every pair.
+    std::vector<double> map(rgb.begin(), rgb.end());
+    table_.resize(std::size_t(levels_) * levels_);
+    std::vector<AxisBlur> blurs;
+    for (int k = 0; k < levels_; ++k) blurs.emplace_back(size, sigma_of(k), resolution_of(k));
+    for (int i = 0; i < levels_; ++i) {
+        const int wa = resolution_of(i);
+        std::vector<double> along_a(std::size_t(wa) * size * 3);
+        for (int y = 0; y < size; ++y)
+            for (int c = 0; c < 3; ++c)
+                blurs[i].apply(&map[std::size_t(y) * size * 3 + c], 3, &along_a[std::size_t(y) * wa * 3 + c], 3);
+        for (int j = 0; j < levels_; ++j) {
+            Blurred& blurred = table_[std::size_t(i) * levels_ + j];
+            blurred.width = wa, blurred.height = resolution_of(j);
+            blurred.rgb.resize(std::size_t(wa) * blurred.height * 3);
+            for (int x = 0; x < wa; ++x)
+                for (int c = 0; c < 3; ++c)
+                    blurs[j].apply(&along_a[std::size_t(x) * 3 + c], std::size_t(wa) * 3, &blurred.rgb[std::size_t(x) * 3 + c],
+                                   std::size_t(wa) * 3);
+        }
+    }
+}
+
+Rgb ColourMapFilter::fetch(int level_a, int level_b, double a, double b) const
+{
+    const Blurred& m = table_[std::size_t(level_a) * levels_ + level_b];
+    const double x = std::clamp(a * m.width - 0.5, 0.0, double(m.width - 1));
+    const double y = std::clamp(b * m.height - 0.5, 0.0, double(m.height - 1));
+    const int x0 = std::min(int(x), std::max(0, m.width - 2)), y0 = std::min(int(y), std::max(0, m.height - 2));
+    const int x1 = std::min(x0 + 1, m.width - 1), y1 = std::min(y0 + 1, m.height - 1);
+    const double fx = x - x0, fy = y - y0;
+    Rgb out;
+    for (int c = 0; c < 3; ++c) {
+        auto at = [&](int xi, int yi) { return double(m.rgb[(std::size_t(yi) * m.width + xi) * 3 + c]); };
+        out[c] = float((at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) + (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy);
+    }
+    return out;
+}
+
+double ColourMapFilter::fractional_level(double sigma) const
+{
+    // σ_k = 2^(k−1) texels: level 1 + log2 σ; below one texel, linear towards the raw map;
+    // beyond the last finite blur, towards the average (reached at σ = half the map).
+    if (!(sigma > 0)) return 0;
+    if (sigma < 1) return sigma;
+    return std::min(double(levels_ - 1), 1 + std::log2(sigma));
+}
+
+Rgb ColourMapFilter::fetch_fractional(double level_a, double level_b, double a, double b) const
+{
+    const int ia = std::min(int(level_a), levels_ - 1), ib = std::min(int(level_b), levels_ - 1);
+    const double ta = level_a - ia, tb = level_b - ib;
+    const int ja = std::min(ia + 1, levels_ - 1), jb = std::min(ib + 1, levels_ - 1);
+    const Rgb c00 = fetch(ia, ib, a, b);
+    if (ta == 0 && tb == 0) return c00;
+    const Rgb c10 = fetch(ja, ib, a, b), c01 = fetch(ia, jb, a, b), c11 = fetch(ja, jb, a, b);
+    Rgb out;
+    for (int c = 0; c < 3; ++c)
+        out[c] = float((c00[c] * (1 - ta) + c10[c] * ta) * (1 - tb) + (c01[c] * (1 - ta) + c11[c] * ta) * tb);
+    return out;
+}
+
+Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
+{
+    const double a = std::clamp(mean_a, 0.0, 1.0), b = std::clamp(mean_b, 0.0, 1.0);
+    // Texel units: the map spans [0, 1] with size_ texels per axis.
+    const double n2 = double(size_) * size_;
+    const double var_a = std::max(0.0, covariance.aa) * n2, var_b = std::max(0.0, covariance.bb) * n2;
+    if (method == ColourMapMethod::reference) {
+        auto level = [&](double variance) {
+            return std::min(levels_ - 1, int(std::lround(std::log2(1 + std::sqrt(variance)))));
+        };
+        return fetch(level(var_a), level(var_b), a, b);
+    }
+    double cov = covariance.ab * n2;
+    const double bound = std::sqrt(var_a * var_b);
+    if (method == ColourMapMethod::interpolated || !(std::abs(cov) > 1e-3 * bound))
+        return fetch_fractional(fractional_level(std::sqrt(var_a)), fractional_level(std::sqrt(var_b)), a, b);
+    // Σ = diag(d) + u uᵀ: u = (α, ±β) with αβ = |cov| and α/β = sqrt(var_a / var_b) leaves
+    // d = (var_a − α², var_b − β²) ≥ 0 (zero for a perfect correlation).
+    cov = std::clamp(cov, -bound, bound);
+    const double alpha = std::sqrt(std::abs(cov) * std::sqrt(var_a / var_b));
+    const double beta = std::sqrt(std::abs(cov) * std::sqrt(var_b / var_a)) * (cov < 0 ? -1 : 1);
+    const double d_a = std::max(0.0, var_a - alpha * alpha), d_b = std::max(0.0, var_b - beta * beta);
+    const double la = fractional_level(std::sqrt(d_a)), lb = fractional_level(std::sqrt(d_b));
+    // Nodes along u no farther apart than about a texel or the blur already there.
+    const double length = std::hypot(alpha, beta);
+    const double spacing = std::max(1.0, std::sqrt(std::min(d_a, d_b)));
+    const int count = std::clamp(int(std::ceil(8 * length / spacing)) | 1, 3, 63);
+    const LineQuadrature& rule = line_quadrature(count);
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < count; ++k) {
+        const double t = rule.node[k];
+        const Rgb c = fetch_fractional(la, lb, std::clamp(a + t * alpha / size_, 0.0, 1.0), std::clamp(b + t * beta / size_, 0.0, 1.0));
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += rule.weight[k] * c[ch];
+    }
+    return {float(sum[0]), float(sum[1]), float(sum[2])};
+}
+
+Rgb ColourMapFilter::expected(double mean_a, double mean_b, const PairCovariance& covariance) const
+{
+    // N = μ + L z, L the Cholesky factor; z on a fine uniform grid with Gaussian weights.
+    const double l11 = std::sqrt(std::max(0.0, covariance.aa));
+    const double l21 = l11 > 0 ? covariance.ab / l11 : 0.0;
+    const double l22 = std::sqrt(std::max(0.0, covariance.bb - l21 * l21));
+    const int count = 64;
+    const LineQuadrature& rule = line_quadrature(count);
+    double sum[3] = {0, 0, 0};
+    for (int i = 0; i < count; ++i)
+        for (int j = 0; j < count; ++j) {
+            const double z1 = rule.node[i], z2 = rule.node[j];
+            const Rgb c = point(std::clamp(mean_a + l11 * z1, 0.0, 1.0), std::clamp(mean_b + l21 * z1 + l22 * z2, 0.0, 1.0));
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += rule.weight[i] * rule.weight[j] * c[ch];
+        }
+    return {float(sum[0]), float(sum[1]), float(sum[2])};
+}
+
+}  // namespace stochtex

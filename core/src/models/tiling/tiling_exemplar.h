@@ -1,0 +1,29 @@
+// How a tiling texture's exemplar is made from image planes: a centred crop whose sides are
+// powers of two (the moment pyramids need them), made periodic by Moisan's decomposition (tiles
+// are cut anywhere in it, with wrap: a seam would show inside tiles, notes P2.7 #6), quantised.
+#pragma once
+
+#include <stochtex/texture_description.h>
+#include <stochtex/models/tiling_parameters.h>
+
+#include <array>
+#include <vector>
+
+namespace stochtex {
+
+/// The largest power of two ≤ n (n ≥ 1).
+int power_of_two_floor(int n);
+
+/// The centred crop_width × crop_height part of a plane, made periodic (Moisan's periodic
+/// component, which keeps the crop's mean).
+std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height);
+
+/// The colour-output parameters from the analysis's decorrelated channels of a width × height
+/// photo, Gaussianised where the channel has a histogram map: the exemplar is their centred
+/// crop of at most max_side² pixels, periodic, at `bits` bits. A channel with a map is stored
+/// in standard-normal units (the map's input: divided by the whole channel's σ), the others in
+/// channel units, so the texture passes stored values to ColourMapping unscaled.
+TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                     const std::array<HistogramMap, 3>& histograms, int max_side, int bits);
+
+}  // namespace stochtex

@@ -1,0 +1,77 @@
+// The tiling model (paper 002) in the registry: its parameter schema (tiling_parameters),
+// analysis options, fit and `stex info` lines. The maths is in tiling_noise, moment_pyramid,
+// colour_map_filter, normal_map_filter and tiling_texture.
+#include "models/model.h"
+#include "models/tiling/tiling_exemplar.h"
+#include "models/tiling/tiling_parameters.h"
+#include "models/tiling/tiling_texture.h"
+
+#include <stochtex/models/tiling_parameters.h>
+
+namespace stochtex {
+
+namespace {
+
+ModelInfo tiling_info()
+{
+    ModelInfo info;
+    info.name = "tiling";
+    info.summary = "tiling and blending of an exemplar crop stored in the .stex (Heitz–Neyret, Deliot–Heitz), "
+                   "moment-filtered: any texture a crop shows, structure included; colour-mapped and phasor noise";
+    info.doc = "docs/models/tiling.md";
+    info.capabilities.analysis = true;
+    return info;
+}
+
+class TilingModel final : public ModelOf<TilingParameters> {
+public:
+    TilingModel() : ModelOf(tiling_info(), tiling_schema())
+    {
+        declare_analysis_options(
+            {integer_option("exemplar-size", 16, 1024,
+                            {"256", "px", "largest exemplar side; the exemplar is the photo's centred crop, sides powers of two"}),
+             choice_option("exemplar-bits", {"8", "16"}, {"8", "bits", "bits per stored exemplar sample"})});
+    }
+
+    void validate(const TextureDescription& description, const std::string& source) const override
+    {
+        ModelOf::validate(description, source);
+        validate_tiling_colour_fields(description, source);
+    }
+
+    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
+    {
+        return std::make_unique<TilingTexture>(description);
+    }
+    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
+    {
+        return std::make_unique<TilingTexture>(description, period);
+    }
+    std::string describe(const TextureDescription& description) const override { return describe_tiling(description); }
+
+    ModelParameters fit(const FitInput& input, Provenance& provenance) const override
+    {
+        // The exemplar itself (a periodic crop of the decorrelated channels) is the model.
+        const int size = std::stoi(input.model_options.at("exemplar-size"));
+        const int bits = std::stoi(input.model_options.at("exemplar-bits"));
+        provenance.options.insert(provenance.options.end(), {{"exemplar_size", std::to_string(size)},
+                                                             {"exemplar_bits", std::to_string(bits)}});
+        return fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits);
+    }
+
+    ModelParameters morph(const TextureDescription&, const TextureDescription&, double) const override
+    {
+        // Blending two exemplars image-wise would not give a texture "between" them.
+        throw Error("morph: tiling textures are exemplar images and cannot be morphed");
+    }
+};
+
+}  // namespace
+
+const Model& tiling_model()
+{
+    static const TilingModel model;
+    return model;
+}
+
+}  // namespace stochtex

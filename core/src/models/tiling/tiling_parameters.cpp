@@ -1,0 +1,203 @@
+#include "models/tiling/tiling_parameters.h"
+
+#include "stex/base64.h"
+#include "stex/quantised_image.h"
+
+#include <stochtex/error.h>
+#include <stochtex/models/tiling_parameters.h>
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace stochtex {
+
+namespace {
+
+using json_fields::Field;
+using json_fields::Json;
+
+constexpr TilingOutput all_outputs[] = {TilingOutput::colour, TilingOutput::colour_map, TilingOutput::normal_map};
+
+std::string show(double value)
+{
+    char text[32];
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+bool power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+QuantisedImage read_image(const Field& image)
+{
+    image.expect_keys({"width", "height", "channels", "bits", "ranges", "png"});
+    QuantisedImage result;
+    constexpr std::int64_t int_max = std::numeric_limits<int>::max();
+    result.width = int(image["width"].integer(0, int_max));
+    result.height = int(image["height"].integer(0, int_max));
+    result.channels = int(image["channels"].integer(1, 3));
+    result.bits = int(image["bits"].integer(0, int_max));
+    if (result.bits != 8 && result.bits != 16) image["bits"].fail("expected 8 or 16, got " + std::to_string(result.bits));
+    for (const Field& range : image["ranges"].elements(result.channels, "channel ranges")) {
+        const std::array<double, 2> r = range.numbers<2>();
+        result.ranges.push_back(r);
+    }
+    // Sizes are checked before decoding, so that a huge declared image costs nothing.
+    for (const char* side : {"width", "height"}) {
+        const int n = side[0] == 'w' ? result.width : result.height;
+        if (!power_of_two(n) || n > max_tiling_exemplar_side)
+            image[side].fail("must be a power of two no larger than " + std::to_string(max_tiling_exemplar_side) +
+                             ", got " + std::to_string(n));
+    }
+    const Field png = image["png"];
+    const std::string text = png.string();
+    if (text.size() > max_image_payload_chars)
+        png.fail("payload of " + std::to_string(text.size()) + " characters exceeds the limit of " +
+                 std::to_string(max_image_payload_chars));
+    try {
+        decode_png(base64_decode(text), result);
+    } catch (const Error& e) {
+        png.fail(e.what());
+    }
+    return result;
+}
+
+/// The fields of an embedded image, for the documentation.
+std::vector<ParameterInfo> image_fields()
+{
+    return {{"width", "integer", "power of two", "", "px", "", {}},
+            {"height", "integer", "power of two", "", "px", "", {}},
+            {"channels", "integer", "[1, 3]", "", "", "", {}},
+            {"bits", "integer", "8 | 16", "", "", "bits per stored sample", {}},
+            {"ranges", "numbers[2] per channel", "min ≤ max", "", "", "the values sample 0 and sample 2^bits − 1 stand for", {}},
+            {"png", "string", "≤ 16 MiB", "", "", "base64 PNG: the planes stacked vertically, grey", {}}};
+}
+
+Json image_json(const QuantisedImage& image)
+{
+    Json json = Json::object();
+    json["width"] = image.width;
+    json["height"] = image.height;
+    json["channels"] = image.channels;
+    json["bits"] = image.bits;
+    json["ranges"] = image.ranges;
+    json["png"] = base64_encode(encode_png(image));
+    return json;
+}
+
+void check_image(const QuantisedImage& image, const std::string& path, int channels, int min_side, int max_side,
+                 const std::string& source)
+{
+    auto check_side = [&](int side, const char* name) {
+        if (!power_of_two(side) || side < min_side || side > max_side)
+            json_fields::fail(source, path + "." + name,
+                              "must be a power of two in [" + std::to_string(min_side) + ", " + std::to_string(max_side) +
+                                  "], got " + std::to_string(side));
+    };
+    check_side(image.width, "width");
+    check_side(image.height, "height");
+    if (image.channels != channels)
+        json_fields::fail(source, path + ".channels",
+                          "expected " + std::to_string(channels) + " for this output, got " + std::to_string(image.channels));
+    if (image.bits != 8 && image.bits != 16)
+        json_fields::fail(source, path + ".bits", "expected 8 or 16, got " + std::to_string(image.bits));
+    if (image.ranges.size() != std::size_t(channels))
+        json_fields::fail(source, path + ".ranges",
+                          "expected " + std::to_string(channels) + " ranges, got " + std::to_string(image.ranges.size()));
+    for (std::size_t c = 0; c < image.ranges.size(); ++c) {
+        const std::string at = path + ".ranges[" + std::to_string(c) + "]";
+        const auto& r = image.ranges[c];
+        for (double v : r)
+            if (!(std::fabs(v) <= std::numeric_limits<float>::max()))
+                json_fields::fail(source, at, "expected finite numbers within float range, got " + show(v));
+        if (!(r[0] <= r[1])) json_fields::fail(source, at, "minimum " + show(r[0]) + " exceeds maximum " + show(r[1]));
+    }
+    const std::size_t expected = std::size_t(image.width) * image.height * image.channels;
+    if (image.samples.size() != expected)
+        json_fields::fail(source, path + ".png",
+                          "holds " + std::to_string(image.samples.size()) + " samples, expected " + std::to_string(expected));
+    const unsigned largest = (1u << image.bits) - 1;
+    for (std::uint16_t q : image.samples)
+        if (q > largest) json_fields::fail(source, path + ".png", "sample " + std::to_string(q) + " exceeds " + std::to_string(largest));
+}
+
+}  // namespace
+
+const char* to_string(TilingOutput output)
+{
+    switch (output) {
+    case TilingOutput::colour: return "colour";
+    case TilingOutput::colour_map: return "colour_map";
+    case TilingOutput::normal_map: return "normal_map";
+    }
+    throw Error("invalid TilingOutput value " + std::to_string(static_cast<int>(output)));
+}
+
+TilingOutput tiling_output_from_string(const std::string& name)
+{
+    for (TilingOutput output : all_outputs)
+        if (name == to_string(output)) return output;
+    throw Error("unknown tiling output '" + name + "' (valid: colour, colour_map, normal_map)");
+}
+
+ParameterSchema<TilingParameters> tiling_schema()
+{
+    using P = TilingParameters;
+    ParameterSchema<P> schema;
+    schema.enumeration("output", &P::output, to_string, tiling_output_from_string,
+                       {TilingOutput::colour, TilingOutput::colour_map, TilingOutput::normal_map},
+                       {"colour", "", "what the blended channels are: colour channels, two noises indexing a colour map, "
+                                      "or two slopes of a normal map"});
+    schema.number("triangle_edge", &P::triangle_edge, {1.0 / 64, 1, "exemplar widths"},
+                  {"0.288675", "exemplar widths", "edge of the triangle grid (1/(2√3) is Deliot–Heitz's)"});
+    ParameterInfo exemplar{"exemplar", "image", "", "", "",
+                           "the periodic exemplar: channels × width × height samples (sides powers of two in [16, 1024]) "
+                           "quantised to bits, as base64 PNG",
+                           image_fields()};
+    schema.custom(
+        exemplar, [](const Field& f, P& p, const ReadContext&) { p.exemplar = read_image(f); }, [](const P& p) { return image_json(p.exemplar); },
+        [](const P& p, const std::string& path, const std::string& source) {
+            check_image(p.exemplar, path, p.output == TilingOutput::colour ? 3 : 2, min_tiling_exemplar_side,
+                        max_tiling_exemplar_side, source);
+        });
+    ParameterInfo colour_map{"colour_map", "image | null", "", "", "",
+                             "colour_map output only (else null): the 2D colour map S, square, 3 channels of sRGB values "
+                             "in [0, 1]; x follows noise 0, y noise 1",
+                             image_fields()};
+    schema.custom(
+        colour_map,
+        [](const Field& f, P& p, const ReadContext&) {
+            if (!f.is_null()) p.colour_map = read_image(f);
+        },
+        [](const P& p) { return p.colour_map.channels > 0 ? image_json(p.colour_map) : Json(); },
+        [](const P& p, const std::string& path, const std::string& source) {
+            const bool wants_map = p.output == TilingOutput::colour_map;
+            if (wants_map != (p.colour_map.channels > 0))
+                json_fields::fail(source, path,
+                                  wants_map ? "missing: output colour_map needs a colour map"
+                                            : std::string("must be null for output ") + to_string(p.output));
+            if (!wants_map) return;
+            check_image(p.colour_map, path, 3, min_colour_map_side, max_colour_map_side, source);
+            if (p.colour_map.width != p.colour_map.height)
+                json_fields::fail(source, path, "must be square, got " + std::to_string(p.colour_map.width) + "x" +
+                                                    std::to_string(p.colour_map.height));
+            for (std::size_t c = 0; c < 3; ++c)
+                if (!(p.colour_map.ranges[c][0] >= 0 && p.colour_map.ranges[c][1] <= 1))
+                    json_fields::fail(source, path + ".ranges[" + std::to_string(c) + "]", "sRGB values must lie in [0, 1]");
+        });
+    return schema;
+}
+
+void validate_tiling_colour_fields(const TextureDescription& description, const std::string& source)
+{
+    const TilingParameters& p = description.parameters.get<TilingParameters>();
+    if (p.output == TilingOutput::colour) return;
+    // The colour fields do not apply: one spelling keeps such files canonical.
+    if (description.colour_mode != ColourMode::rgb)
+        json_fields::fail(source, "colour.mode", std::string("must be \"rgb\" for tiling output ") + to_string(p.output));
+    for (std::size_t c = 0; c < 3; ++c)
+        if (description.histograms[c].enabled())
+            json_fields::fail(source, "histograms[" + std::to_string(c) + "]",
+                              std::string("must be null for tiling output ") + to_string(p.output));
+}
+
+}  // namespace stochtex

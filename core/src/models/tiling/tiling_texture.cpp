@@ -1,0 +1,176 @@
+#include "models/tiling/tiling_texture.h"
+
+#include "models/tiling/normal_map_filter.h"
+#include "stex/quantised_image.h"
+#include "numerics/random.h"
+
+#include <stochtex/error.h>
+#include <stochtex/models/tiling_parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace stochtex {
+
+namespace {
+
+double srgb_to_linear(double v)
+{
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
+ColourMapFilter make_colour_map(const QuantisedImage& map)
+{
+    std::vector<float> rgb(std::size_t(map.width) * map.height * 3);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(std::size_t(y) * map.width + x) * 3 + c] = float(srgb_to_linear(map.value(c, x, y)));
+    return ColourMapFilter(rgb, map.width);
+}
+
+/// The footprint's texture-space columns in exemplar pixels.
+PixelFootprint pixel_footprint(double dudx, double dvdx, double dudy, double dvdy, double pixels_per_unit)
+{
+    return {{dudx * pixels_per_unit, dvdx * pixels_per_unit}, {dudy * pixels_per_unit, dvdy * pixels_per_unit}};
+}
+
+}  // namespace
+
+std::shared_ptr<const MomentPyramid> tiling_pyramid(const TilingParameters& parameters)
+{
+    const QuantisedImage& e = parameters.exemplar;
+    return std::make_shared<const MomentPyramid>(dequantise(e), e.width, e.height);
+}
+
+TilingTexture::TilingTexture(const TextureDescription& description, const TilingFilterOptions& options)
+    : TilingTexture(description, nullptr, options)
+{
+}
+
+TilingTexture::TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options)
+    : TilingTexture(description, &period, options)
+{
+}
+
+TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* period, const TilingFilterOptions& options)
+    : Texture(description), options_(options), output_(description.parameters.get<TilingParameters>().output)
+{
+    const TilingParameters& parameters = description.parameters.get<TilingParameters>();
+    const std::shared_ptr<const MomentPyramid> pyramid = tiling_pyramid(parameters);
+    const double edge = parameters.triangle_edge * std::min(pyramid->width(), pyramid->height());
+    for (std::uint32_t plane = 0; plane < 3; ++plane) {
+        // Plane 0 keeps the description's seed; the solid blend's other planes get their own.
+        const std::uint32_t seed = plane == 0 ? description.seed : std::uint32_t(mix_seed(description.seed, plane, 0x7431));
+        if (plane == 0 && period)
+            planes_.emplace_back(pyramid, TilingGrid(seed, edge, {(*period)[0] * description.pixels_per_unit,
+                                                                  (*period)[1] * description.pixels_per_unit}));
+        else
+            planes_.emplace_back(pyramid, TilingGrid(seed, edge));
+    }
+    // The exemplar stores each channel in its map's input units (fit_tiling_exemplar): unit σ_M.
+    if (output_ == TilingOutput::colour) colour_mapping_.emplace(description, std::array<double, 3>{1, 1, 1});
+    if (output_ == TilingOutput::colour_map) colour_map_.emplace(make_colour_map(parameters.colour_map));
+}
+
+Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
+{
+    const double ppu = description().pixels_per_unit;
+    return planes_[0].footprint_estimate(uv[0] * ppu, uv[1] * ppu, pixel_footprint(f.dudx, f.dvdx, f.dudy, f.dvdy, ppu),
+                                         options_.sampling);
+}
+
+Rgb TilingTexture::colour(const Moments& m) const
+{
+    switch (output_) {
+    case TilingOutput::colour: {
+        std::array<double, 3> spread{};
+        for (int c = 0; c < 3; ++c) spread[c] = std::sqrt(std::max(0.0, m.moment(c, c)));
+        return colour_mapping_->to_rgb({m.mean[0], m.mean[1], m.mean[2]}, spread);
+    }
+    case TilingOutput::colour_map:
+        return colour_map_->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)},
+                                     options_.colour_map);
+    case TilingOutput::normal_map: {
+        const Direction n = normal_from_slopes(m.mean[0], m.mean[1]);
+        return {float(0.5 + 0.5 * n[0]), float(0.5 + 0.5 * n[1]), float(0.5 + 0.5 * n[2])};
+    }
+    }
+    throw Error("tiling texture: unknown output");
+}
+
+Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(moments(uv, footprint)); }
+
+Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
+{
+    // Plane k spans the axes (k, k+1 mod 3) and faces axis k+2: weights ∝ n⁴, Σ ω² = 1.
+    const double ppu = description().pixels_per_unit;
+    const double length = std::sqrt(point.n[0] * point.n[0] + point.n[1] * point.n[1] + point.n[2] * point.n[2]);
+    std::array<double, 3> omega{};
+    double norm = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double facing = length > 0 ? point.n[(k + 2) % 3] / length : (k == 0 ? 1.0 : 0.0);
+        omega[k] = std::pow(facing, 4);
+        norm += omega[k] * omega[k];
+    }
+    const Moments& global = planes_[0].global();
+    Moments result;
+    result.channels = global.channels;
+    result.mean = global.mean;
+    for (int k = 0; k < 3; ++k) {
+        const double w = omega[k] / std::sqrt(norm);
+        if (w == 0) continue;
+        const int s = k, t = (k + 1) % 3;
+        const PixelFootprint footprint =
+            pixel_footprint(point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t], ppu);
+        const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, footprint, options_.sampling);
+        for (int a = 0; a < result.channels; ++a) {
+            result.mean[a] += w * (m.mean[a] - global.mean[a]);
+            for (int b = 0; b < result.channels; ++b) result.moment(a, b) += w * w * m.moment(a, b);
+        }
+    }
+    return colour(result);
+}
+
+}  // namespace stochtex
+
+namespace stochtex {
+
+std::string describe_tiling(const TextureDescription& d)
+{
+    const TilingParameters& t = d.parameters.get<TilingParameters>();
+    const QuantisedImage& e = t.exemplar;
+    const std::shared_ptr<const MomentPyramid> pyramid = tiling_pyramid(t);
+    const Moments global = pyramid->global();
+    const int side = std::min(e.width, e.height);
+    char line[256];
+    std::string out;
+    auto add = [&](const char* text) { out += text; };
+    std::snprintf(line, sizeof line, "tiling       output %s; exemplar %dx%d, %d channels, %d bits (%.4g x %.4g texture units)\n",
+                  to_string(t.output), e.width, e.height, e.channels, e.bits, e.width / d.pixels_per_unit,
+                  e.height / d.pixels_per_unit);
+    add(line);
+    const double edge_px = t.triangle_edge * side;
+    std::snprintf(line, sizeof line,
+                  "grid         triangle edge %.4g exemplar widths = %.1f px; hexagonal tiles %.1f px across; %d pyramid levels\n",
+                  t.triangle_edge, edge_px, 2 * edge_px, pyramid->level_count());
+    add(line);
+    for (int c = 0; c < e.channels; ++c) {
+        std::snprintf(line, sizeof line, "channel %d    mean %+.5f, sigma %.5f (exact, exemplar), stored range [%.4g, %.4g]\n", c,
+                      global.mean[c], std::sqrt(global.moment(c, c)), e.ranges[c][0], e.ranges[c][1]);
+        add(line);
+    }
+    if (e.channels == 2) {
+        const double r = global.moment(0, 1) / std::sqrt(global.moment(0, 0) * global.moment(1, 1));
+        std::snprintf(line, sizeof line, "correlation  %+.4f between the two channels\n", r);
+        add(line);
+    }
+    if (t.output == TilingOutput::colour_map) {
+        std::snprintf(line, sizeof line, "colour map   %dx%d sRGB, %d bits\n", t.colour_map.width, t.colour_map.height, t.colour_map.bits);
+        add(line);
+    }
+    return out;
+}
+
+}  // namespace stochtex

@@ -1,0 +1,81 @@
+// Tiling and blending by example (paper 002): the texture of model "tiling".
+//
+// The .stex holds a small periodic exemplar (texture_description.h, TilingParameters). Its
+// channels are blended over a triangle grid (tiling_noise.h); what they mean depends on the
+// output:
+//   colour     — 3 decorrelated colour channels, as in the wavelet model: each channel's
+//                histogram map (histogram-preserving blending: the exemplar was Gaussianised,
+//                the map restores the photo's histogram), then rgb = mean + basis · y;
+//   colour_map — 2 noises in [0, 1] indexing a 2D colour map S (colour-mapped noise vector
+//                field; phasor noise is the pair (sin, cos) and a map profile ∘ atan2);
+//   normal_map — 2 slopes: the RGB is the encoded normal of the mean slope (n·½ + ½); the
+//                slope covariance (LEAN, normal_map_filter.h) is available from moments().
+//
+// Filtering: the footprint estimator gives the channels' mean μ̂ and covariance Σ̂ over the
+// pixel; colour then integrates the histogram maps over 𝒩(μ̂, Σ̂) (ColourMapping's
+// Gauss–Hermite), colour_map looks up the pre-blurred colour-map table Ŝ(μ̂, Σ̂)
+// (colour_map_filter.h). So minification converges to the exemplar's exact statistics.
+//
+// Solid: no solid exemplar exists, so eval_solid() blends three axis-aligned planar tilings
+// (independent grids) with weights ∝ n_k⁴ normalised so that Σ ω_k² = 1: variance-preserving
+// like the tiles themselves, and filtered with each plane's projected footprint.
+//
+// Periodic form: the triangle grid is stretched to a periodic lattice of the requested period
+// (tiling_grid.h); tiles are addressed relative to their vertex, so nothing else changes.
+#pragma once
+
+#include "models/tiling/colour_map_filter.h"
+#include "colour/colour_mapping.h"
+#include "models/tiling/tiling_noise.h"
+
+#include <stochtex/texture.h>
+#include <stochtex/models/tiling_parameters.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace stochtex {
+
+struct TilingFilterOptions {
+    FootprintSampling sampling;
+    ColourMapMethod colour_map = ColourMapMethod::covariance;
+};
+
+class TilingTexture final : public Texture {
+public:
+    explicit TilingTexture(const TextureDescription& description, const TilingFilterOptions& options = {});
+    /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
+    TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options = {});
+
+    Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
+    Rgb eval_solid(const SurfacePoint& point) const override;
+    Rgb mean() const override { return colour(planes_[0].global()); }
+
+    /// The blended channels' filtered moments at uv over the footprint (2D).
+    Moments moments(const Vec2& uv, const Footprint2D& footprint) const;
+    /// The output colour of channels with these moments.
+    Rgb colour(const Moments& moments) const;
+    const TilingNoise& noise() const { return planes_[0]; }
+    const TilingFilterOptions& options() const { return options_; }
+    /// The colour map's filter (colour_map output only, else null).
+    const ColourMapFilter* colour_map_filter() const { return colour_map_ ? &*colour_map_ : nullptr; }
+
+private:
+    TilingTexture(const TextureDescription& description, const Vec2* period, const TilingFilterOptions& options);
+
+    TilingFilterOptions options_;
+    TilingOutput output_;
+    /// planes_[0] is the 2D texture; planes_[1], [2] the extra planes of the solid blend.
+    std::vector<TilingNoise> planes_;
+    std::optional<ColourMapping> colour_mapping_;
+    std::optional<ColourMapFilter> colour_map_;
+};
+
+/// The moment pyramid of a description's (dequantised) exemplar.
+std::shared_ptr<const MomentPyramid> tiling_pyramid(const TilingParameters& parameters);
+
+/// The tiling part of `stex info`: output, exemplar, grid geometry, exact exemplar statistics.
+std::string describe_tiling(const TextureDescription& description);
+
+}  // namespace stochtex

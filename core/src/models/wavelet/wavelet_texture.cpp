@@ -1,0 +1,222 @@
+#include "models/wavelet/wavelet_texture.h"
+#include <stochtex/models/wavelet_parameters.h>
+
+#include "models/wavelet/band_filter.h"
+#include "numerics/random.h"
+#include "models/wavelet/wavelet_noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace stochtex {
+
+namespace {
+
+std::array<double, 3> band_sigmas(const WaveletParameters& parameters)
+{
+    std::array<double, 3> sigma{};
+    for (int c = 0; c < 3; ++c) sigma[c] = wavelet_channel_sigma(parameters.band_weights[c]);
+    return sigma;
+}
+
+}  // namespace
+
+double wavelet_channel_sigma(const std::vector<double>& band_weights)
+{
+    double sum = 0;
+    for (double w : band_weights) sum += w * w;
+    return std::sqrt(WaveletNoise2D::shared().variance() * sum);
+}
+
+namespace {
+
+/// How a periodic texture lays out one band along one axis: `repeats` copies of a tile of
+/// `tile` lattice cells fill the period. The lattice period tile·repeats is the closest we can
+/// get to the band's natural one, `natural` cells (period × ppu · 2^-j).
+struct BandLattice {
+    int tile = 0;  // 0: the band does not fit the period
+    int repeats = 1;
+};
+
+BandLattice band_lattice(double natural)
+{
+    constexpr int shared_tile = 256, largest_tile = 1024;
+    // A band needs a few lattice cells to exist at all: its wavelengths are 2–4 cells.
+    if (!(natural >= 3)) return {};
+    const double cells = std::round(natural);
+    if (std::fmod(cells, shared_tile) == 0) return {shared_tile, int(cells / shared_tile)};
+    const int repeats = int(std::ceil(natural / largest_tile));
+    const int tile = std::max(4, 2 * int(std::lround(natural / (2.0 * repeats))));
+    return {tile, repeats};
+}
+
+}  // namespace
+
+WaveletTexture::WaveletTexture(const TextureDescription& description) : WaveletTexture(description, nullptr) {}
+
+WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2& period)
+    : WaveletTexture(description, &period)
+{
+}
+
+WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2* period)
+    : Texture(description),
+      sigma_m_(band_sigmas(description.parameters.get<WaveletParameters>())),
+      solid_gain_(std::sqrt(WaveletNoise2D::shared().variance() / WaveletNoise3D::shared().variance())),
+      colour_(description, sigma_m_)
+{
+    const auto& weights = description.parameters.get<WaveletParameters>().band_weights;
+    const WaveletNoise2D& shared = WaveletNoise2D::shared();
+    present_bands_ = weights[0].size();
+    for (std::size_t j = 0; j < weights[0].size(); ++j) {
+        const double natural_scale = std::ldexp(description.pixels_per_unit, -int(j));
+        const WaveletNoise2D* tile = &shared;
+        double scale[2] = {natural_scale, natural_scale};
+        if (period) {
+            const BandLattice x = band_lattice((*period)[0] * natural_scale);
+            const BandLattice y = band_lattice((*period)[1] * natural_scale);
+            if (x.tile == 0 || y.tile == 0) {
+                // Kept in bands_ (its weight counts as dropped variance) but never synthesised.
+                present_bands_ = std::min(present_bands_, j);
+            } else {
+                tile = &WaveletNoise2D::with_period(x.tile, y.tile);
+                scale[0] = x.tile * x.repeats / (*period)[0];
+                scale[1] = y.tile * y.repeats / (*period)[1];
+            }
+        }
+        const double gain = std::sqrt(shared.variance() / tile->variance());
+        for (int c = 0; c < 3; ++c) {
+            const int offset_channel = description.colour_mode == ColourMode::rgb_shared ? 0 : c;
+            SplitMix64 rng(mix_seed(description.seed, j, offset_channel));
+            Band band{weights[c][j], tile, gain, {scale[0], scale[1]}, natural_scale, {}};
+            // Whole-lattice random offsets decorrelate bands and channels; the fractional part
+            // of the fine bands is the balanced phase, so a render at the photo's pixel scale
+            // (pixel centres at (x + ½)·2^-j) shows each band with its true variance. Offsets
+            // cover a whole tile; the 3D tile is smaller, so 3D takes each offset modulo it.
+            const bool balanced = j < std::size_t(WaveletNoise2D::balanced_phase_count);
+            const double grid_phase = 0.5 * std::ldexp(1.0, -int(j));
+            for (int axis = 0; axis < 3; ++axis) {
+                const double cells = axis == 1 ? tile->period_y() : tile->period_x();
+                band.offset[axis] = balanced ? std::floor(cells * rng.uniform()) + tile->balanced_phase(int(j)) - grid_phase
+                                             : cells * rng.uniform();
+            }
+            bands_[c].push_back(band);
+        }
+    }
+}
+
+WaveletTexture::Fades WaveletTexture::fades(double footprint_px) const
+{
+    // The fade depends on the band only, not on the channel.
+    Fades result;
+    const std::size_t band_count = bands_[0].size();
+    for (std::size_t j = 0; j < band_count; ++j)
+        result.band[j] = j < present_bands_ ? band_fade(int(j), footprint_px) : 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        double dropped_variance = 0;
+        for (std::size_t j = 0; j < band_count; ++j) {
+            const double weight = bands_[c][j].weight;
+            const float fade = result.band[j];
+            if (fade < 1) dropped_variance += (1 - double(fade) * fade) * weight * weight;
+        }
+        const double sigma = sigma_m_[c];
+        result.dropped_sigma[c] = sigma > 0 ? std::sqrt(dropped_variance * WaveletNoise2D::shared().variance()) / sigma : 0;
+    }
+    return result;
+}
+
+Rgb WaveletTexture::finish(const std::array<double, 3>& kept, double gain, const Fades& fades) const
+{
+    std::array<double, 3> z{};
+    for (int c = 0; c < 3; ++c)
+        if (sigma_m_[c] > 0) z[c] = gain * kept[c] / sigma_m_[c];
+    return colour_.to_rgb(z, fades.dropped_sigma);
+}
+
+template <class BandNoise>
+Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
+{
+    const Fades f = fades(footprint_px);
+    std::array<double, 3> kept{};
+    for (int c = 0; c < 3; ++c) {
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const float fade = f.band[j];
+            if (fade > 0 && bands[j].weight != 0) kept[c] += fade * bands[j].weight * band_noise(bands[j]);
+        }
+    }
+    return finish(kept, gain, f);
+}
+
+Rgb WaveletTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
+{
+    const double footprint_px = footprint.major_axis() * description().pixels_per_unit;
+    return synthesize(footprint_px, 1.0, [&](const Band& band) {
+        return band.gain * band.tile->eval(uv[0] * band.scale[0] + band.offset[0], uv[1] * band.scale[1] + band.offset[1]);
+    });
+}
+
+Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
+{
+    const WaveletNoise3D& noise = WaveletNoise3D::shared();
+    const double footprint_px = point.major_axis() * description().pixels_per_unit;
+    const auto& p = point.p;
+    return synthesize(footprint_px, solid_gain_, [&](const Band& band) {
+        const double s = band.solid_scale;
+        return noise.eval(p[0] * s + band.offset[0], p[1] * s + band.offset[1], p[2] * s + band.offset[2]);
+    });
+}
+
+}  // namespace stochtex
+
+namespace stochtex {
+
+void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
+{
+    // eval() at every pixel, with the work that depends on one coordinate only done once: the
+    // fades for the whole region, a band's x-spline once per column, and per row its y-spline
+    // and the three coefficient rows combined once (then 3 products per pixel instead of 12).
+    // The arithmetic is eval()'s, in the same order: bit-identical values.
+    const Fades f = fades(region.footprint.major_axis() * description().pixels_per_unit);
+    const std::size_t pixels = std::size_t(region.width) * region.height;
+    std::vector<std::array<double, 3>> kept(pixels, std::array<double, 3>{});
+    std::vector<LatticeSpline> columns(region.width);
+    std::vector<float> combined;
+    for (int c = 0; c < 3; ++c) {
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const Band& band = bands[j];
+            const float fade = f.band[j];
+            if (!(fade > 0 && band.weight != 0)) continue;
+            const double fade_weight = fade * band.weight;
+            const WaveletNoise2D& tile = *band.tile;
+            std::int64_t lo = INT64_MAX, hi = INT64_MIN;  // the padded columns this band reads
+            for (int i = 0; i < region.width; ++i) {
+                columns[i] = tile.spline_x(region.u(i) * band.scale[0] + band.offset[0]);
+                lo = std::min(lo, columns[i].first), hi = std::max(hi, columns[i].first + 2);
+            }
+            combined.resize(std::size_t(hi - lo + 1));
+            const std::size_t width = tile.padded_width();
+            for (int y = 0; y < region.height; ++y) {
+                const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
+                const float* coefficients = tile.padded_row(row.first);
+                for (std::int64_t k = lo; k <= hi; ++k)
+                    combined[std::size_t(k - lo)] = WaveletNoise2D::combine_rows(row, coefficients + k, width);
+                std::array<double, 3>* out = &kept[std::size_t(y) * region.width];
+                for (int i = 0; i < region.width; ++i) {
+                    const LatticeSpline& sx = columns[i];
+                    const float* at = &combined[std::size_t(sx.first - lo)];
+                    const float value = sx.w[0] * at[0] + sx.w[1] * at[1] + sx.w[2] * at[2];
+                    out[i][c] += fade_weight * (band.gain * double(value));
+                }
+            }
+        }
+    }
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const Rgb value = finish(kept[p], 1.0, f);
+        std::copy(value.begin(), value.end(), rgb + 3 * p);
+    }
+}
+
+}  // namespace stochtex
