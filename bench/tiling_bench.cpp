@@ -7,7 +7,7 @@
 #include <stochtex/image.h>
 #include <stochtex/render.h>
 #include <stochtex/texture.h>
-#include <stochtex/tiling.h>
+#include <stochtex/models/tiling.h>
 
 #include <benchmark/benchmark.h>
 

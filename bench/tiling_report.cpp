@@ -188,7 +188,7 @@ BlockEstimates estimate_blocks(const TilingNoise& noise, const NoiseRaster& rast
     BlockEstimates e;
     e.blocks = noise_blocks(raster, k, point_colour);
     for (const NoiseBlock& b : e.blocks) {
-        const PixelFootprint f = PixelFootprint::square(k);
+        const Footprint2D f = Footprint2D::square(k);
         e.paper.push_back(noise.footprint_estimate(b.x, b.y, f, paper_estimator.sampling));
         e.mixture.push_back(noise.footprint_estimate(b.x, b.y, f, mixture_estimator.sampling));
         e.taps.push_back(noise.footprint_estimate(b.x, b.y, f, tap_estimator.sampling));
@@ -309,13 +309,13 @@ void flicker_table(const std::vector<std::pair<const char*, std::pair<const Tili
         const std::pair<const char*, std::function<Rgb(double, double, double)>> renderings[] = {
             {"point-sampled (no filtering)", [&](double x, double y, double) { const Moments m = noise.point(x, y); return map.point(m.mean[0], m.mean[1]); }},
             {"mean only: S(μ̂) (a MIP-mapped noise)", [&](double x, double y, double px) {
-                 const Moments m = noise.footprint_estimate(x, y, PixelFootprint::square(px), tap_estimator.sampling);
+                 const Moments m = noise.footprint_estimate(x, y, Footprint2D::square(px), tap_estimator.sampling);
                  return map.point(m.mean[0], m.mean[1]); }},
             {"paper: Ŝ(μ̂, σ̂), 1 texel, rounded level", [&](double x, double y, double px) {
-                 const Moments m = noise.footprint_estimate(x, y, PixelFootprint::square(px), paper_estimator.sampling);
+                 const Moments m = noise.footprint_estimate(x, y, Footprint2D::square(px), paper_estimator.sampling);
                  return filtered(map, m, m, ColourMapMethod::reference); }},
             {"stochtex: Ŝ(μ̂, σ̂), taps, interpolated, covariance", [&](double x, double y, double px) {
-                 const Moments m = noise.footprint_estimate(x, y, PixelFootprint::square(px), tap_estimator.sampling);
+                 const Moments m = noise.footprint_estimate(x, y, Footprint2D::square(px), tap_estimator.sampling);
                  return filtered(map, m, m, ColourMapMethod::covariance); }},
         };
         for (const auto& [label, render_pixel] : renderings) {
@@ -370,7 +370,7 @@ void lean_table(const std::vector<std::vector<double>>& heights, int side, const
             reference_mean /= blocks.size();
             std::vector<double> naive, lean, exact;
             for (const NoiseBlock& b : blocks) {
-                const Moments m = noise.footprint_estimate(b.x, b.y, PixelFootprint::square(k), tap_estimator.sampling);
+                const Moments m = noise.footprint_estimate(b.x, b.y, Footprint2D::square(k), tap_estimator.sampling);
                 naive.push_back(100 * std::abs(facet_ndf(m.mean[0], m.mean[1], base, half) - b.box_colour[0]) / reference_mean);
                 lean.push_back(100 * std::abs(lean_ndf(m, base, half) - b.box_colour[0]) / reference_mean);
                 exact.push_back(100 * std::abs(lean_ndf(b.exact, base, half) - b.box_colour[0]) / reference_mean);
@@ -421,7 +421,7 @@ void colour_map_figure(const std::string& path, const TilingNoise& noise, const 
     auto point = [&](double x, double y) { const Moments m = noise.point(x, y); return map.point(m.mean[0], m.mean[1]); };
     auto estimate = [&](const Estimator& e, ColourMapMethod method) {
         return [&noise, &map, &e, method](double x, double y, double px) {
-            const Moments m = noise.footprint_estimate(x, y, PixelFootprint::square(px), e.sampling);
+            const Moments m = noise.footprint_estimate(x, y, Footprint2D::square(px), e.sampling);
             return map.filtered(m.mean[0], m.mean[1], pair(m), method);
         };
     };

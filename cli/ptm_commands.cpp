@@ -6,8 +6,8 @@
 
 #include <stochtex/error.h>
 #include <stochtex/lighting.h>
-#include <stochtex/ptm.h>
-#include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm.h>
+#include <stochtex/models/relief_shading.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>

@@ -11,10 +11,10 @@ namespace stex_cli {
 
 class PtmCommands {
 public:
-    /// Registers "ptm" and its sub-commands on `app`.
+    /// Registers the ptm command and its sub-commands on `app`.
     explicit PtmCommands(CLI::App& app);
     ~PtmCommands();
-    /// Whether the command line chose "ptm".
+    /// Whether the command line chose the ptm command.
     bool selected() const;
     /// Runs the chosen sub-command; throws stochtex::Error for bad input.
     int run() const;

@@ -6,7 +6,7 @@
 #include <stochtex/error.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
-#include <stochtex/tiling.h>
+#include <stochtex/models/tiling.h>
 #include <stochtex/models/tiling_parameters.h>
 
 #include <cstdio>

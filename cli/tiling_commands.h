@@ -12,7 +12,7 @@ namespace stex_cli {
 
 class TilingCommands {
 public:
-    /// Registers "tiling" and its sub-commands on `app`.
+    /// Registers the tiling command and its sub-commands on `app`.
     explicit TilingCommands(CLI::App& app);
     ~TilingCommands();
     bool selected() const;

@@ -1,7 +1,7 @@
 // stochtex - the wavelet model's synthesis in OSL (docs/osl.md).
 //
 // A transcription of the core's WaveletTexture::eval / eval_solid (core/src/wavelet_texture.cpp)
-// with the numbers of core/include/stochtex/wavelet_shader_data.h: band clamping (band_fade),
+// with the numbers of core/include/stochtex/models/wavelet_shader_data.h: band clamping (band_fade),
 // the quadratic B-spline over the Cook-DeRose coefficient tile, the histogram map's
 // Gauss-Hermite filter, the colour basis. The coefficient tiles are small images read with
 // closest-texel texture() lookups, so each coefficient is the core's float exactly and the

@@ -56,6 +56,13 @@ for model in wavelet gabor; do
   render "$model solid" "$work/$model.stex" "$model-solid.exr" "${small[@]}" --solid --z 0.37
   render "$model solid zoom" "$work/$model.stex" "$model-solid-zoom.exr" "${small[@]}" --solid --z -2 --scale 5
 done
+# The solid bake at the texels of a position map (a sheared ramp, every texel covered).
+oiiotool --pattern fill:topleft=0,0,0,1:topright=2,0,0.5,1:bottomleft=0,1.5,1,1:bottomright=2,1.5,1.5,1 48x40 4 \
+  -d float -o "$work/positions.exr"
+for model in wavelet gabor tiling; do
+  "$stex" bake "$work/$model.stex" -o "$work/$model-solid-map.exr" --positions "$work/positions.exr" --position-scale 0.5 >/dev/null
+  fingerprint "$model bake positions" "$work/$model-solid-map.exr"
+done
 "$stex" morph "$work/wavelet.stex" "$work/wavelet.stex" --t 0.5 -o "$work/morph.stex" >/dev/null
 fingerprint "wavelet morph" "$work/morph.stex"
 "$stex" pov "$work/wavelet.stex" -o "$work/wavelet.inc" --name T >/dev/null

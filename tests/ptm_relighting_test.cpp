@@ -6,8 +6,8 @@
 #include "test_support.h"
 
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
-#include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm.h>
+#include <stochtex/models/relief_shading.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 #include "test_support.h"
 
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
-#include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm.h>
+#include <stochtex/models/relief_shading.h>
 
 #include <OpenImageIO/imageio.h>
 

@@ -12,7 +12,7 @@
 #include <stochtex/error.h>
 #include <stochtex/lighting.h>
 #include <stochtex/mip_image.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>

@@ -9,8 +9,8 @@
 #include "blending/tiling_grid.h"
 
 #include <stochtex/lighting.h>
-#include <stochtex/ptm.h>
-#include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm.h>
+#include <stochtex/models/relief_shading.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>

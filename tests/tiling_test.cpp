@@ -19,7 +19,7 @@
 #include <stochtex/metrics.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
-#include <stochtex/tiling.h>
+#include <stochtex/models/tiling.h>
 #include <stochtex/models/tiling_parameters.h>
 
 #include <gtest/gtest.h>
@@ -154,7 +154,7 @@ TEST(TilingNoise, EstimatorsReturnTheExemplarMomentsAtTheCoarsestLevelAndNoVaria
     for (int i = 0; i < 500; ++i) {
         const double x = 997.0 * std::sin(i), y = 991.0 * std::cos(3.0 * i);
         const Moments top = noise.texel_estimate(x, y, 99, TexelInterpolation::linear);
-        const Moments wide = noise.footprint_estimate(x, y, PixelFootprint::square(1e6), {});
+        const Moments wide = noise.footprint_estimate(x, y, Footprint2D::square(1e6), {});
         for (const Moments* m : {&top, &wide})
             for (int a = 0; a < 2; ++a) {
                 ASSERT_NEAR(m->mean[a], global.mean[a], 1e-14);
@@ -164,7 +164,7 @@ TEST(TilingNoise, EstimatorsReturnTheExemplarMomentsAtTheCoarsestLevelAndNoVaria
         ASSERT_EQ(point.moment(0, 0), 0.0);
         ASSERT_EQ(point.moment(1, 1), 0.0);
         // The covariance over a footprint is positive semi-definite (a mixture of PSD parts).
-        const Moments f = noise.footprint_estimate(x, y, {{7, 3}, {-2, 9}}, {});
+        const Moments f = noise.footprint_estimate(x, y, Footprint2D{7, 3, -2, 9}, {});
         ASSERT_GE(f.moment(0, 0) * f.moment(1, 1) - f.moment(0, 1) * f.moment(0, 1), -1e-15);
     }
 }
@@ -214,7 +214,7 @@ double colour_error(const TilingNoise& noise, const NoiseRaster& raster, const C
     const auto blocks = noise_blocks(raster, k, [&](const Moments& m) { return map.point(m.mean[0], m.mean[1]); });
     std::vector<double> errors;
     for (const NoiseBlock& b : blocks) {
-        const Moments m = exact_moments ? b.exact : noise.footprint_estimate(b.x, b.y, PixelFootprint::square(k), sampling);
+        const Moments m = exact_moments ? b.exact : noise.footprint_estimate(b.x, b.y, Footprint2D::square(k), sampling);
         errors.push_back(colour_distance(map.filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, method),
                                          b.box_colour));
     }
@@ -259,7 +259,7 @@ TEST(TilingEstimators, PrefilteringFlickersLessUnderZoom)
     };
     const double point = flicker([&](double x, double y, double) { const Moments m = noise.point(x, y); return map.point(m.mean[0], m.mean[1]); });
     const double filtered = flicker([&](double x, double y, double px) {
-        const Moments m = noise.footprint_estimate(x, y, PixelFootprint::square(px), {});
+        const Moments m = noise.footprint_estimate(x, y, Footprint2D::square(px), {});
         return map.filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, ColourMapMethod::covariance);
     });
     EXPECT_LT(filtered, 0.5 * point) << "flicker filtered " << filtered << ", point-sampled " << point;
@@ -282,7 +282,7 @@ TEST(TilingEstimators, LeanBeatsTheMeanNormalAtTheLobeCentre)
         });
         double lean = 0, naive = 0;
         for (const NoiseBlock& b : blocks) {
-            const Moments m = slopes.footprint_estimate(b.x, b.y, PixelFootprint::square(k), {});
+            const Moments m = slopes.footprint_estimate(b.x, b.y, Footprint2D::square(k), {});
             lean += std::abs(lean_ndf(m, base, half) - b.box_colour[0]);
             naive += std::abs(facet_ndf(m.mean[0], m.mean[1], base, half) - b.box_colour[0]);
         }

@@ -260,7 +260,7 @@ class STOCHTEX_OT_analyze(_StexPipeline, bpy.types.Operator):
             photo = _photo_path(settings.image or _active_image_node_image(self.mat), self.work)
         self.texture_name = bpy.path.clean_name(os.path.splitext(os.path.basename(photo))[0]) or "texture"
         self.stex_path = self.work.file(self.texture_name + ".stex")
-        analysis = stex_cli.analyze_args(photo, self.stex_path, settings.model, settings.histogram, settings.seed,
+        analysis = stex_cli.analyze_args(photo, self.stex_path, None if settings.model == "NONE" else settings.model, settings.histogram, settings.seed,
                                          settings.unit_size)
         return [("analysis", analysis)] + _render_steps(self, settings, self.stex_path, self.texture_name)
 

@@ -23,6 +23,22 @@ _ROUTES_WITHOUT_OSL = [_BAKED, _SOLID]
 _ROUTES_WITH_OSL = [_BAKED, _SOLID, _OSL]
 
 
+# The models come from the core's registry (`stex models --json`), asked once per session.
+_models_cache = []
+
+
+def _models(self, context):
+    if not _models_cache:
+        from . import stex_cli
+        try:
+            prefs = context.preferences.addons[__package__].preferences if context else None
+            executable = stex_cli.find_stex(getattr(prefs, "stex_path", ""))
+            _models_cache.extend(stex_cli.analysable_models(stex_cli.list_models(executable)))
+        except (stex_cli.StexError, KeyError, AttributeError) as error:
+            return [("NONE", "(stex not found)", str(error))]
+    return _models_cache
+
+
 def _routes(self, context):
     return _ROUTES_WITH_OSL if has_osl() else _ROUTES_WITHOUT_OSL
 
@@ -41,12 +57,8 @@ class StochtexSettings(bpy.types.PropertyGroup):
     # Analysis
     image: PointerProperty(type=bpy.types.Image, name="Photo",
                            description="The photo to analyse (empty: the active Image Texture node's image)")
-    model: EnumProperty(name="Model", default="wavelet", items=[
-        ("wavelet", "Wavelet noise", "Isotropic stochastic textures (concrete, sand, rust, gravel from afar)"),
-        ("gabor", "Gabor noise", "Random-phase Gabor octaves, optionally oriented (docs/models/gabor.md); "
-         "baked and solid routes"),
-        ("lrp", "Local random-phase noise", "Any spectrum, anisotropic too, with a little of the photo's own structure "
-         "(docs/models/lrp.md); baked route (its solid map is the 2D texture projected along w)")])
+    model: EnumProperty(name="Model", items=_models,
+                        description="The texture model (the core's registry; the first is the core's default)")
     histogram: EnumProperty(name="Histogram", default="auto", items=[
         ("auto", "Auto", "Match each channel's histogram where it measurably helps"),
         ("on", "On", "Always match the photo's histograms"),

@@ -38,9 +38,26 @@ def find_stex(preference=""):
     return found
 
 
-def analyze_args(photo, output, model="wavelet", histogram="auto", seed=1, unit_size_m=1.0):
-    return ["analyze", photo, "-o", output, "--model", model, "--histogram", histogram,
-            "--seed", str(int(seed)), "--unit-size", repr(float(unit_size_m))]
+def analyze_args(photo, output, model=None, histogram="auto", seed=1, unit_size_m=1.0):
+    """model None: the core's default model."""
+    args = ["analyze", photo, "-o", output] + (["--model", model] if model else [])
+    return args + ["--histogram", histogram, "--seed", str(int(seed)), "--unit-size", repr(float(unit_size_m))]
+
+
+def list_models(executable):
+    """The core's model registry (`stex models --json`): a list of dicts with name, summary, doc,
+    capabilities, parameters and analysis_options, in the core's order."""
+    text = run(executable, ["models", "--json"])
+    try:
+        return json.loads(text)["models"]
+    except (ValueError, KeyError, TypeError) as error:
+        raise StexError("%s models --json: unexpected output (%s)" % (executable, error)) from None
+
+
+def analysable_models(models):
+    """(identifier, name, description) for each model that analyses photos: the panel's choices."""
+    return [(m["name"], m["name"].capitalize(), "%s (%s)" % (m["summary"], m["doc"]))
+            for m in models if m.get("capabilities", {}).get("analysis")]
 
 
 def bake_args(texture, output, size, half=True):
@@ -165,7 +182,7 @@ def apply_tweaks(text, seed=None, band_gains=None, histograms=True, name="textur
     if band_gains:
         weights = data.get("parameters", {}).get("band_weights")
         if weights is None:
-            raise StexError("%s: band gains need a model with band weights (wavelet)" % name)
+            raise StexError("%s: band gains need a model with band weights (%s has none)" % (name, data.get("model")))
         for channel in weights:
             for j in range(min(len(channel), len(band_gains))):
                 channel[j] = channel[j] * max(0.0, float(band_gains[j]))

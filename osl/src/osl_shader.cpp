@@ -1,7 +1,7 @@
 #include <stochtex/error.h>
 #include <stochtex/model.h>
 #include <stochtex/osl/osl_shader.h>
-#include <stochtex/wavelet_shader_data.h>
+#include <stochtex/models/wavelet_shader_data.h>
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,5 +1,5 @@
 // A height map lit by one directional light, seen from straight above: the POV-Ray twin of
-// stochtex's relief test data (core/include/stochtex/relief_shading.h; docs/models/ptm.md,
+// stochtex's relief test data (core/include/stochtex/models/relief_shading.h; docs/models/ptm.md,
 // "Test data"). tests/ptm_scene_test.cpp renders it and compares it with the C++ renderer.
 //
 // Declare on the command line (Declare=NAME=VALUE):

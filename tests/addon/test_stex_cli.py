@@ -45,6 +45,20 @@ class StexCliTest(unittest.TestCase):
         self.assertEqual(stex_cli.band_count(data), 8)
         self.assertTrue(all(h is not None for h in data["histograms"]))
 
+    def test_models_come_from_the_core_registry(self):
+        models = stex_cli.list_models(self.stex)
+        names = [m["name"] for m in models]
+        self.assertEqual(len(names), len(set(names)))
+        choices = stex_cli.analysable_models(models)
+        # Exactly the models whose capabilities say they analyse photos, in the registry's order.
+        self.assertEqual([c[0] for c in choices], [m["name"] for m in models if m["capabilities"]["analysis"]])
+        self.assertGreaterEqual(len(choices), 1)
+        # The first is the core's default: analysing without --model gives it.
+        with open(self.texture) as f:
+            self.assertEqual(json.load(f)["model"], choices[0][0])
+        for model in models:
+            self.assertTrue(model["parameters"], model["name"])
+
     def test_bake_reports_progress_and_writes_a_mip_mapped_exr(self):
         out = os.path.join(self.dir, "bake.exr")
         job = stex_cli.StexJob(self.stex, stex_cli.bake_args(self.texture, out, 512))

@@ -23,6 +23,9 @@ struct Footprint2D {
     /// An axis-aligned square footprint of `size` texture units (a raster's pixel spacing).
     static Footprint2D square(double size) { return {size, 0, 0, size}; }
 
+    /// The same footprint in other units (e.g. exemplar pixels: scale = pixels per unit).
+    Footprint2D scaled(double scale) const { return {dudx * scale, dvdx * scale, dudy * scale, dvdy * scale}; }
+
     /// Largest singular value of the Jacobian: the footprint's longest axis, in texture units.
     double major_axis() const;
 };

@@ -31,6 +31,7 @@ struct ParameterInfo {
     std::string unit;           ///< "exemplar px", "cycles / exemplar px", …; "" when unitless
     std::string doc;            ///< one line
     std::vector<ParameterInfo> fields;  ///< members of an object, or of each element of a list
+    bool optional = false;      ///< the key may be absent
 };
 
 /// A registered model, as front-ends and documentation see it.

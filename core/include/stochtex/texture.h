@@ -9,6 +9,7 @@
 #include <stochtex/texture_description.h>
 
 #include <array>
+#include <cstddef>
 #include <memory>
 
 namespace stochtex {
@@ -27,20 +28,67 @@ struct RasterRegion {
     double v(int j) const { return origin_v + (y0 + j + 0.5) * dv; }
 };
 
+/// A raster of surface points on the plane w = const, normal +w (a solid slice: render --solid):
+/// pixel (x, y) is the point (plane.u(x), plane.v(y), w) with the plane's footprint.
+struct SolidRegion {
+    RasterRegion plane;
+    double w = 0;
+};
+
+/// 2D points, each with its own footprint (count of each).
+struct PointBatch {
+    const Vec2* uv = nullptr;
+    const Footprint2D* footprints = nullptr;
+    std::size_t count = 0;
+};
+
+/// Surface points (solid evaluation), each with its own footprint.
+struct SurfaceBatch {
+    const SurfacePoint* points = nullptr;
+    std::size_t count = 0;
+};
+
+/// Where a batch's values go: channel c of item i is channel[c][i · stride]. Planar output
+/// (three arrays, stride 1) is what vectorised paths write; interleaved RGB is one array, stride 3.
+struct RgbOutput {
+    std::array<float*, 3> channel{};
+    std::size_t stride = 1;
+
+    static RgbOutput interleaved(float* rgb) { return {{rgb, rgb + 1, rgb + 2}, 3}; }
+    static RgbOutput planar(float* r, float* g, float* b) { return {{r, g, b}, 1}; }
+    void set(std::size_t item, const Rgb& value) const
+    {
+        for (int c = 0; c < 3; ++c) channel[c][item * stride] = value[c];
+    }
+};
+
+/// A texture model's evaluation. The point methods (eval, eval_solid) are the one-sample case
+/// of the batch methods, which every consumer with more than one sample calls (render, MIP
+/// levels, plugin tiles, bakes): models override the batch methods with paths that share work
+/// between samples (rows share lattice cells, kernel sets), values bit-identical to the point
+/// methods'. The defaults loop over the point methods.
 class Texture {
 public:
     virtual ~Texture() = default;
 
     /// Filtered 2D value at (u, v) in texture units; the footprint is the pixel's Jacobian.
     virtual Rgb eval(const Vec2& uv, const Footprint2D& footprint) const = 0;
-    /// eval() at every pixel of the region, into rgb (width·height·3 floats, rows of width).
-    /// Models override it with faster paths that share work along rows and columns; the values
-    /// are bit-identical to eval()'s.
-    virtual void eval_region(const RasterRegion& region, float* rgb) const;
     /// Filtered solid (3D) value at a surface point.
     virtual Rgb eval_solid(const SurfacePoint& point) const = 0;
     /// The texture's expected value: what infinite minification converges to.
     virtual Rgb mean() const = 0;
+
+    /// eval() at every pixel of the region (item j·width + i is pixel (i, j)).
+    virtual void eval_region(const RasterRegion& region, const RgbOutput& out) const;
+    /// eval() at each point of the batch.
+    virtual void eval_points(const PointBatch& points, const RgbOutput& out) const;
+    /// eval_solid() at every pixel of the solid region (item j·width + i is pixel (i, j)).
+    virtual void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const;
+    /// eval_solid() at each point of the batch.
+    virtual void eval_solid_points(const SurfaceBatch& points, const RgbOutput& out) const;
+
+    /// eval_region() into interleaved RGB (width·height·3 floats, rows of width).
+    void eval_region(const RasterRegion& region, float* rgb) const { eval_region(region, RgbOutput::interleaved(rgb)); }
 
     const TextureDescription& description() const { return description_; }
 

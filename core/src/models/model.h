@@ -82,6 +82,10 @@ public:
     /// The model's lines of `stex info` (after the shared colour and histogram lines).
     virtual std::string describe(const TextureDescription& description) const = 0;
 
+    /// A small valid description of this model, for the conformance suite (tests/) that every
+    /// registered model passes. The default analyses a synthetic photo (capabilities.analysis).
+    virtual TextureDescription example() const;
+
     // ---- Capabilities (info().capabilities says which are there; the others throw) -----------
     /// Fits the model's parameters from a photo (capabilities.analysis) and appends its options
     /// to the provenance.

@@ -2,6 +2,8 @@
 
 #include <stochtex/error.h>
 
+#include "numerics/random.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
@@ -73,6 +75,32 @@ double Model::channel_sigma(const TextureDescription&, int) const { unsupported(
 Vec3 Model::light(const TextureDescription&) const { unsupported("does not depend on a light direction"); }
 void Model::set_light(TextureDescription&, const Vec3&) const { unsupported("does not depend on a light direction"); }
 
+TextureDescription Model::example() const
+{
+    if (!info_.capabilities.analysis) unsupported("has no example description");
+    // A 96² photo of correlated, coloured, non-Gaussian noise with some orientation: every
+    // analysing model has something to fit, in milliseconds.
+    constexpr int size = 96;
+    Image photo(size, size, 3);
+    SplitMix64 random(12345);
+    std::vector<double> noise(std::size_t(size) * size);
+    for (double& n : noise) n = random.uniform();
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double sum = 0;  // a 5 × 3 box (periodic): wider along x than along y
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) sum += noise[std::size_t((y + dy + size) % size) * size + (x + dx + size) % size];
+            const double v = sum / 15, w = v * v;
+            photo.at(x, y, 0) = float(0.2 + 0.5 * w);
+            photo.at(x, y, 1) = float(0.15 + 0.4 * w + 0.05 * noise[std::size_t(y) * size + x]);
+            photo.at(x, y, 2) = float(0.1 + 0.3 * v);
+        }
+    AnalysisOptions options;
+    options.model = name();
+    options.source_name = "example";
+    return analyze(photo, options);
+}
+
 void Model::declare_analysis_options(std::vector<AnalysisOption> options)
 {
     info_.analysis_options = option_infos(options);
@@ -135,6 +163,7 @@ json_fields::Json parameter_json(const ParameterInfo& p)
     json["default"] = p.default_value;
     json["unit"] = p.unit;
     json["doc"] = p.doc;
+    if (p.optional) json["optional"] = true;
     if (!p.fields.empty()) {
         json["fields"] = json_fields::Json::array();
         for (const ParameterInfo& field : p.fields) json["fields"].push_back(parameter_json(field));
@@ -147,7 +176,7 @@ void table_rows(const ParameterInfo& p, const std::string& parent, std::string& 
 {
     const std::string key = parent.empty() ? p.key : parent + "." + p.key;
     auto cell = [](const std::string& text) { return text.empty() ? std::string("—") : text; };
-    out += "| `" + key + "` | " + p.type + " | " + cell(p.range) + " | " + cell(p.default_value) + " | " + cell(p.unit) +
+    out += "| `" + key + "`" + (p.optional ? " (optional)" : "") + " | " + p.type + " | " + cell(p.range) + " | " + cell(p.default_value) + " | " + cell(p.unit) +
            " | " + cell(p.doc) + " |\n";
     for (const ParameterInfo& field : p.fields) table_rows(field, key, out);
 }

@@ -166,7 +166,12 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     const int workers = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     std::atomic<int> next_row{0}, rows_done{0};
     auto work = [&] {
+        // A row's covered texels are one batch; their values land in a planar row buffer.
+        std::vector<SurfacePoint> points;
+        std::vector<int> columns;
+        std::vector<float> planes;
         for (int y; (y = next_row.fetch_add(1)) < map.height;) {
+            points.clear(), columns.clear();
             for (int x = 0; x < map.width; ++x) {
                 if (!map.covered(x, y)) continue;
                 const float* p = map.at(x, y);
@@ -175,9 +180,15 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
                 point.n = {0, 0, 0};  // the derivatives lie on the surface already
                 point.dpdx = derivative(map, x, y, 1, 0, units_per_position);
                 point.dpdy = derivative(map, x, y, 0, 1, units_per_position);
-                const Rgb value = texture->eval_solid(point);
-                float* texel = &out[(std::size_t(y) * map.width + x) * 4];
-                texel[0] = value[0], texel[1] = value[1], texel[2] = value[2], texel[3] = 1.0f;
+                points.push_back(point);
+                columns.push_back(x);
+            }
+            const std::size_t n = points.size();
+            planes.resize(3 * n);
+            texture->eval_solid_points({points.data(), n}, RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n));
+            for (std::size_t k = 0; k < n; ++k) {
+                float* texel = &out[(std::size_t(y) * map.width + columns[k]) * 4];
+                texel[0] = planes[k], texel[1] = planes[n + k], texel[2] = planes[2 * n + k], texel[3] = 1.0f;
             }
             rows_done.fetch_add(1);
         }

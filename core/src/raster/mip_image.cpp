@@ -1,6 +1,5 @@
 #include <stochtex/error.h>
 #include <stochtex/mip_image.h>
-#include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 
 #include <vector>
@@ -29,17 +28,17 @@ void MipImage::fill(int level, int x0, int y0, int w, int h, float* out) const
         throw Error("MIP image: region outside level " + std::to_string(level));
     // A texel of this level spans period / level size: that is its position step and its
     // footprint (levels of odd sizes have slightly non-square texels).
-    RenderSettings settings;
-    settings.width = level_w;
-    settings.height = level_h;
-    settings.units_per_pixel = period_[0] / level_w;
-    settings.units_per_pixel_v = period_[1] / level_h;
+    RasterRegion region;
+    region.du = period_[0] / level_w;
+    region.dv = period_[1] / level_h;
+    region.x0 = x0, region.y0 = y0, region.width = w, region.height = h;
+    region.footprint = {region.du, 0, 0, region.dv};
     if (channel_count_ == 3) {
-        render_region(*texture_, settings, x0, y0, w, h, out);
+        texture_->eval_region(region, out);
         return;
     }
     std::vector<float> rgb(std::size_t(w) * h * 3);
-    render_region(*texture_, settings, x0, y0, w, h, rgb.data());
+    texture_->eval_region(region, rgb.data());
     const std::size_t count = std::size_t(w) * h;
     for (std::size_t i = 0; i < count; ++i) {
         const float* texel = &rgb[i * 3];

@@ -13,30 +13,18 @@ namespace stochtex {
 
 void render_region(const Texture& texture, const RenderSettings& settings, int x0, int y0, int w, int h, float* rgb)
 {
-    const double step_u = settings.units_per_pixel;
-    const double step_v = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : step_u;
-    const double footprint_u = settings.filter ? step_u : 0.0, footprint_v = settings.filter ? step_v : 0.0;
-    if (!settings.solid) {
-        RasterRegion region;
-        region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
-        region.du = step_u, region.dv = step_v;
-        region.x0 = x0, region.y0 = y0, region.width = w, region.height = h;
-        region.footprint = {footprint_u, 0, 0, footprint_v};
-        texture.eval_region(region, rgb);
-        return;
-    }
-    for (int y = 0; y < h; ++y) {
-        const double v = settings.origin_v + (y0 + y + 0.5) * step_v;
-        float* row = rgb + std::size_t(y) * w * 3;
-        for (int x = 0; x < w; ++x) {
-            SurfacePoint point;
-            point.p = {settings.origin_u + (x0 + x + 0.5) * step_u, v, settings.z};
-            point.dpdx = {footprint_u, 0, 0};
-            point.dpdy = {0, footprint_v, 0};
-            const Rgb value = texture.eval_solid(point);
-            std::copy(value.begin(), value.end(), row + 3 * x);
-        }
-    }
+    RasterRegion region;
+    region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
+    region.du = settings.units_per_pixel;
+    region.dv = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : region.du;
+    region.x0 = x0, region.y0 = y0, region.width = w, region.height = h;
+    // Filtered: each pixel's footprint is its spacing; unfiltered: point samples.
+    region.footprint = settings.filter ? Footprint2D{region.du, 0, 0, region.dv} : Footprint2D::point();
+    const RgbOutput out = RgbOutput::interleaved(rgb);
+    if (settings.solid)
+        texture.eval_solid_region({region, settings.z}, out);
+    else
+        texture.eval_region(region, out);
 }
 
 Image render(const Texture& texture, const RenderSettings& settings, const ProgressCallback& progress)

@@ -9,13 +9,34 @@
 
 namespace stochtex {
 
-void Texture::eval_region(const RasterRegion& region, float* rgb) const
+void Texture::eval_region(const RasterRegion& region, const RgbOutput& out) const
 {
     for (int j = 0; j < region.height; ++j)
-        for (int i = 0; i < region.width; ++i) {
-            const Rgb value = eval({region.u(i), region.v(j)}, region.footprint);
-            std::copy(value.begin(), value.end(), rgb + (std::size_t(j) * region.width + i) * 3);
+        for (int i = 0; i < region.width; ++i)
+            out.set(std::size_t(j) * region.width + i, eval({region.u(i), region.v(j)}, region.footprint));
+}
+
+void Texture::eval_points(const PointBatch& points, const RgbOutput& out) const
+{
+    for (std::size_t k = 0; k < points.count; ++k) out.set(k, eval(points.uv[k], points.footprints[k]));
+}
+
+void Texture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
+{
+    const RasterRegion& plane = region.plane;
+    SurfacePoint point;  // normal +w: the plane's
+    point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
+    point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
+    for (int j = 0; j < plane.height; ++j)
+        for (int i = 0; i < plane.width; ++i) {
+            point.p = {plane.u(i), plane.v(j), region.w};
+            out.set(std::size_t(j) * plane.width + i, eval_solid(point));
         }
+}
+
+void Texture::eval_solid_points(const SurfaceBatch& points, const RgbOutput& out) const
+{
+    for (std::size_t k = 0; k < points.count; ++k) out.set(k, eval_solid(points.points[k]));
 }
 
 std::unique_ptr<Texture> make_texture(const TextureDescription& description)

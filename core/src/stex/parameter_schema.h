@@ -108,6 +108,7 @@ public:
                                      std::function<void(const Field&, Struct&, const ReadContext&)> read,
                                      std::function<Json(const Struct&)> write, Check validate = {})
     {
+        info.optional = true;
         entries_.push_back(
             {std::move(info), true, std::move(present), std::move(read), std::move(write), std::move(validate)});
         return *this;
@@ -310,7 +311,7 @@ private:
     };
     static ParameterInfo make_info(const char* key, std::string type, std::string range, const FieldDoc& doc)
     {
-        return {key, std::move(type), std::move(range), doc.default_value, doc.unit, doc.doc, {}};
+        return {key, std::move(type), std::move(range), doc.default_value, doc.unit, doc.doc, {}, false};
     }
 
     std::vector<Entry> entries_;

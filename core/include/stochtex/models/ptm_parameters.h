@@ -17,11 +17,11 @@ enum class PtmColour {
 const char* to_string(PtmColour colour);
 PtmColour ptm_colour_from_string(const std::string& name);  // throws Error
 
-struct PtmMaps;  // stochtex/ptm.h
+struct PtmMaps;  // stochtex/models/ptm.h
 
 /// A polynomial texture map (paper 004): per texel a reflectance function of the light
 /// direction, evaluated for `light`. The coefficient maps live in a float EXR beside the .stex
-/// (docs/stex-format.md, "ptm"); read_stex loads them, write_stex writes them.
+/// (docs/stex-format.md, section ptm); read_stex loads them, write_stex writes them.
 struct PtmParameters {
     PtmColour colour = PtmColour::lrgb;
     /// File name of the coefficient maps beside the .stex (no directories). write_stex names

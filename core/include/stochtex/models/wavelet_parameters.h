@@ -1,4 +1,4 @@
-// stochtex — Multiresolution wavelet noise by example: the parameters block of a "wavelet" .stex (models/wavelet/).
+// stochtex — multiresolution wavelet noise by example: the parameters block of a wavelet .stex (models/wavelet/).
 // The declaration of these fields (keys, ranges, defaults, docs) is the model's parameter schema,
 // in core/src/models/wavelet/; docs/stex-format.md lists it.
 #pragma once

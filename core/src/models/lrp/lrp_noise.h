@@ -31,7 +31,7 @@
 // drawn frequency snaps to the nearest multiple of 1/period.
 #pragma once
 
-#include "models/gabor/gabor_kernel.h"
+#include "raster/footprint_filter.h"
 #include "models/lrp/lrp_window.h"
 
 #include <stochtex/footprint.h>

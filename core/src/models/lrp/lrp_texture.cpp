@@ -142,7 +142,7 @@ struct RegionStratum {
 
 }  // namespace
 
-void LrpTexture::eval_region(const RasterRegion& region, float* rgb) const
+void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) const
 {
     // eval() at every pixel with each lattice point's terms drawn once for the region (and the
     // structure's blocks filtered once): the same terms and the same sums, so bit-identical.
@@ -188,8 +188,7 @@ void LrpTexture::eval_region(const RasterRegion& region, float* rgb) const
                     structure_->eval(x, y, filter, value);
                 for (int c = 0; c < 3; ++c) m[c] += value[c];
             }
-            const Rgb value = finish(m, dropped);
-            std::copy(value.begin(), value.end(), rgb + 3 * (std::size_t(j) * region.width + i));
+            rgb.set(std::size_t(j) * region.width + i, finish(m, dropped));
         }
 }
 

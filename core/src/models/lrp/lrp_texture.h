@@ -40,7 +40,8 @@ public:
     LrpTexture(const TextureDescription& description, const Vec2& period);
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
-    void eval_region(const RasterRegion& region, float* rgb) const override;
+    using Texture::eval_region;
+    void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
     Rgb mean() const override { return colour_.mean(); }
 

@@ -1,6 +1,6 @@
 // Light sidecars: which photo was taken under which light (docs/models/ptm.md, "Input").
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 
 #include "stex/json_fields.h"
 

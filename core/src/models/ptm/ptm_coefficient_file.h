@@ -3,7 +3,7 @@
 // "ptm"). The .stex records its size and a checksum, so a stale or foreign file is an error.
 #pragma once
 
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include <string>

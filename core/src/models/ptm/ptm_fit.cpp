@@ -8,7 +8,7 @@
 // coefficients by −P[:, i]·e_i/(1 − h_i) (e_i the residual), exactly; lrgb's chroma then follows
 // from per-texel sums that are updated by removing light i's term.
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include "models/ptm/ptm_functions.h"

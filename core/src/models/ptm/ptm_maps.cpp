@@ -1,6 +1,6 @@
 // PTM coefficient maps: layout, relighting, and the .stex description that holds them.
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include "models/ptm/ptm_functions.h"

@@ -4,6 +4,9 @@
 #include "models/model.h"
 #include "models/ptm/ptm_stex_fields.h"
 #include "models/ptm/ptm_texture.h"
+#include "numerics/random.h"
+
+#include <stochtex/models/ptm.h>
 
 #include <stochtex/models/ptm_parameters.h>
 
@@ -45,6 +48,22 @@ public:
         return std::make_unique<PtmTexture>(description, period);
     }
     std::string describe(const TextureDescription& description) const override { return describe_ptm(description); }
+
+    TextureDescription example() const override
+    {
+        // 16² texels of random reflectance functions (a bright constant term, small slopes).
+        PtmMaps maps;
+        maps.colour = PtmColour::lrgb;
+        maps.coefficients = Image(16, 16, ptm_channel_count(maps.colour));
+        SplitMix64 random(7);
+        for (std::size_t i = 0; i < maps.coefficients.pixel_count(); ++i) {
+            float* texel = &maps.coefficients.pixels[i * maps.coefficients.channels];
+            texel[0] = float(1.0 + 0.2 * random.uniform());
+            for (int k = 1; k < 6; ++k) texel[k] = float(0.08 * random.gaussian());
+            for (int c = 0; c < 3; ++c) texel[6 + c] = float(0.7 + 0.6 * random.uniform());
+        }
+        return make_ptm_description(std::move(maps), {0.6, 0, 0.8});
+    }
 
     Vec3 light(const TextureDescription& description) const override { return parameters(description).light; }
     void set_light(TextureDescription& description, const Vec3& unit_direction) const override

@@ -8,7 +8,7 @@
 // (⟨1, √(1−r²)⟩ = 2π/3, ⟨l_u², √(1−r²)⟩ = 2π/15, ‖√(1−r²)‖² = π/2). n = g/|g|, albedo = |g|.
 // Maximum estimator (Malzbender et al. 2001): n's projection is where ∂p/∂l_u = ∂p/∂l_v = 0.
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 
 #include "models/ptm/legendre_basis.h"
 #include "models/ptm/ptm_functions.h"

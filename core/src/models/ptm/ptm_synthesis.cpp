@@ -3,7 +3,7 @@
 // vectors is the L2 distance between reflectance functions on [−1, 1]², and a cross-fade of
 // coefficients is the same cross-fade of the functions.
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 
 #include "models/ptm/quilting.h"
 

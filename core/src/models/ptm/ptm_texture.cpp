@@ -3,7 +3,7 @@
 #include "models/ptm/ptm_functions.h"
 
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include <algorithm>

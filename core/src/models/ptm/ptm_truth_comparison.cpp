@@ -1,7 +1,7 @@
 // Measuring relighting and derived maps against a known truth (the acceptance numbers of
 // docs/models/ptm.md; `stex ptm relight --compare`, `stex ptm export-maps --reference-…`).
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 
 #include "models/ptm/ptm_functions.h"
 

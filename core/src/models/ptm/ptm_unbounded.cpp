@@ -3,7 +3,7 @@
 #include "models/tiling/tiling_exemplar.h"
 
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/models/ptm_parameters.h>
 
 #include <memory>

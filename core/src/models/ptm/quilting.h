@@ -6,7 +6,7 @@
 #pragma once
 
 #include <stochtex/image.h>
-#include <stochtex/ptm.h>
+#include <stochtex/models/ptm.h>
 
 namespace stochtex {
 

@@ -1,6 +1,6 @@
 #include <stochtex/error.h>
-#include <stochtex/ptm.h>
-#include <stochtex/relief_shading.h>
+#include <stochtex/models/ptm.h>
+#include <stochtex/models/relief_shading.h>
 
 #include <algorithm>
 #include <cmath>

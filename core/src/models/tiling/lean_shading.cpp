@@ -1,5 +1,5 @@
-// stochtex/tiling.h: LEAN-filtered shading of a normal_map tiling texture.
-#include <stochtex/tiling.h>
+// stochtex/models/tiling.h: LEAN-filtered shading of a normal_map tiling texture.
+#include <stochtex/models/tiling.h>
 
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>

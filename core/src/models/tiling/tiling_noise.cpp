@@ -5,14 +5,6 @@
 
 namespace stochtex {
 
-double PixelFootprint::major_axis() const
-{
-    // Largest singular value of [a b].
-    const double p = a[0] * a[0] + a[1] * a[1], q = a[0] * b[0] + a[1] * b[1], r = b[0] * b[0] + b[1] * b[1];
-    const double half_trace = 0.5 * (p + r);
-    return std::sqrt(std::max(0.0, half_trace + std::sqrt(std::max(0.0, 0.25 * (p - r) * (p - r) + q * q))));
-}
-
 TilingNoise::TilingNoise(std::shared_ptr<const MomentPyramid> pyramid, TilingGrid grid)
     : pyramid_(std::move(pyramid)), grid_(grid), global_(pyramid_->global())
 {
@@ -42,11 +34,13 @@ Moments TilingNoise::texel_estimate(double x, double y, double level, TexelInter
     return estimate(x, y, level, interpolation, grid_.blend(x, y));
 }
 
-Moments TilingNoise::footprint_estimate(double x, double y, const PixelFootprint& footprint,
+Moments TilingNoise::footprint_estimate(double x, double y, const Footprint2D& footprint_px,
                                         const FootprintSampling& sampling) const
 {
-    const double length_a = std::hypot(footprint.a[0], footprint.a[1]);
-    const double length_b = std::hypot(footprint.b[0], footprint.b[1]);
+    // The footprint's columns a = ∂(x, y)/∂screen x and b = ∂(x, y)/∂screen y, in exemplar pixels.
+    const double a[2] = {footprint_px.dudx, footprint_px.dvdx}, b[2] = {footprint_px.dudy, footprint_px.dvdy};
+    const double length_a = std::hypot(a[0], a[1]);
+    const double length_b = std::hypot(b[0], b[1]);
     // Taps per axis: `taps` along the shorter axis, proportionally more along the longer one
     // (bounded); an axis shorter than a pixel needs no taps (level 0 is the exemplar itself).
     const double minor = std::max(1e-12, std::min(length_a, length_b));
@@ -65,8 +59,8 @@ Moments TilingNoise::footprint_estimate(double x, double y, const PixelFootprint
     for (int j = 0; j < nb; ++j)
         for (int i = 0; i < na; ++i) {
             const double s = (i + 0.5) / na - 0.5, t = (j + 0.5) / nb - 0.5;
-            const double px = x + s * footprint.a[0] + t * footprint.b[0];
-            const double py = y + s * footprint.a[1] + t * footprint.b[1];
+            const double px = x + s * a[0] + t * b[0];
+            const double py = y + s * a[1] + t * b[1];
             mixture.add(weight, texel_estimate(px, py, level, sampling.interpolation));
         }
     return mixture.result();

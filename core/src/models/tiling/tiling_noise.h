@@ -19,19 +19,13 @@
 #include "models/tiling/moment_pyramid.h"
 #include "blending/tiling_grid.h"
 
+#include <stochtex/footprint.h>
+
 #include <array>
 #include <memory>
 #include <vector>
 
 namespace stochtex {
-
-/// A footprint in exemplar pixels: the parallelogram spanned by the screen-pixel columns a, b
-/// around its centre (a pixel's Jacobian times pixels per unit).
-struct PixelFootprint {
-    std::array<double, 2> a{0, 0}, b{0, 0};
-    static PixelFootprint square(double size) { return {{size, 0}, {0, size}}; }
-    double major_axis() const;
-};
 
 /// How the footprint estimator samples the pyramid.
 struct FootprintSampling {
@@ -60,7 +54,7 @@ public:
     /// Per-texel estimator at (continuous) pyramid level `level`.
     Moments texel_estimate(double x, double y, double level, TexelInterpolation interpolation) const;
     /// Arbitrary-footprint estimator.
-    Moments footprint_estimate(double x, double y, const PixelFootprint& footprint, const FootprintSampling& sampling) const;
+    Moments footprint_estimate(double x, double y, const Footprint2D& footprint_px, const FootprintSampling& sampling) const;
 
 private:
     Moments estimate(double x, double y, double level, TexelInterpolation interpolation, const TileBlend& blend) const;

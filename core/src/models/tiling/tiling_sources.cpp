@@ -1,5 +1,5 @@
-// stochtex/tiling.h: tiling descriptions from noise pairs, phasor fields and height maps.
-#include <stochtex/tiling.h>
+// stochtex/models/tiling.h: tiling descriptions from noise pairs, phasor fields and height maps.
+#include <stochtex/models/tiling.h>
 
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>

@@ -30,12 +30,6 @@ ColourMapFilter make_colour_map(const QuantisedImage& map)
     return ColourMapFilter(rgb, map.width);
 }
 
-/// The footprint's texture-space columns in exemplar pixels.
-PixelFootprint pixel_footprint(double dudx, double dvdx, double dudy, double dvdy, double pixels_per_unit)
-{
-    return {{dudx * pixels_per_unit, dvdx * pixels_per_unit}, {dudy * pixels_per_unit, dvdy * pixels_per_unit}};
-}
-
 }  // namespace
 
 std::shared_ptr<const MomentPyramid> tiling_pyramid(const TilingParameters& parameters)
@@ -77,7 +71,7 @@ TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* 
 Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
 {
     const double ppu = description().pixels_per_unit;
-    return planes_[0].footprint_estimate(uv[0] * ppu, uv[1] * ppu, pixel_footprint(f.dudx, f.dvdx, f.dudy, f.dvdy, ppu),
+    return planes_[0].footprint_estimate(uv[0] * ppu, uv[1] * ppu, f.scaled(ppu),
                                          options_.sampling);
 }
 
@@ -122,8 +116,8 @@ Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
         const double w = omega[k] / std::sqrt(norm);
         if (w == 0) continue;
         const int s = k, t = (k + 1) % 3;
-        const PixelFootprint footprint =
-            pixel_footprint(point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t], ppu);
+        // The footprint projected on the plane (s, t), in exemplar pixels.
+        const Footprint2D footprint = Footprint2D{point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t]}.scaled(ppu);
         const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, footprint, options_.sampling);
         for (int a = 0; a < result.channels; ++a) {
             result.mean[a] += w * (m.mean[a] - global.mean[a]);

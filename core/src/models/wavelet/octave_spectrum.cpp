@@ -1,4 +1,4 @@
-#include <stochtex/octave_spectrum.h>
+#include <stochtex/models/octave_spectrum.h>
 
 #include <stochtex/channel_map.h>
 #include <stochtex/error.h>

@@ -1,6 +1,6 @@
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>
-#include <stochtex/wavelet_shader_data.h>
+#include <stochtex/models/wavelet_shader_data.h>
 #include <stochtex/models/wavelet_parameters.h>
 
 #include "colour/gaussian.h"

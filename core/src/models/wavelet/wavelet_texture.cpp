@@ -172,7 +172,7 @@ Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
 
 namespace stochtex {
 
-void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
+void WaveletTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) const
 {
     // eval() at every pixel, with the work that depends on one coordinate only done once: the
     // fades for the whole region, a band's x-spline once per column, and per row its y-spline
@@ -213,10 +213,7 @@ void WaveletTexture::eval_region(const RasterRegion& region, float* rgb) const
             }
         }
     }
-    for (std::size_t p = 0; p < pixels; ++p) {
-        const Rgb value = finish(kept[p], 1.0, f);
-        std::copy(value.begin(), value.end(), rgb + 3 * p);
-    }
+    for (std::size_t p = 0; p < pixels; ++p) rgb.set(p, finish(kept[p], 1.0, f));
 }
 
 }  // namespace stochtex

@@ -42,7 +42,7 @@ struct WaveletShaderData {
     std::vector<double> gh_node, gh_weight;  ///< E[f(Z)] ≈ Σ weight_i f(node_i), Z ~ N(0, 1)
 };
 
-/// Throws Error if the description is invalid or its model is not "wavelet".
+/// Throws Error if the description is invalid or it is not a wavelet texture.
 WaveletShaderData wavelet_shader_data(const TextureDescription& description);
 
 /// A periodic noise coefficient tile: width × height × depth floats, x fastest. Lattice cell
