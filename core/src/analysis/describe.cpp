@@ -43,7 +43,20 @@ std::string describe(const TextureDescription& d)
         out << d.histograms[c].z.size() << " knots, values " << format("%.4f .. %.4f", d.histograms[c].value.front(), d.histograms[c].value.back())
             << "\n";
     }
-    out << model_of(d).describe(d);
+    const Model& model = model_of(d);
+    // The declared scalar parameters, as stored, with their units (the declaration says which
+    // they are); arrays and objects are the model's own lines below.
+    const json_fields::Json block = model.write_parameters(d);
+    std::string scalars;
+    for (const ParameterInfo& p : model.info().parameters) {
+        if (!block.contains(p.key) || block[p.key].is_structured() || block[p.key].is_null()) continue;
+        const json_fields::Json& value = block[p.key];
+        scalars += (scalars.empty() ? "" : ", ") + p.key + " " +
+                   (value.is_string() ? value.get<std::string>() : json_fields::format(value).substr(0, json_fields::format(value).size() - 1)) +
+                   (p.unit.empty() ? "" : " " + p.unit);
+    }
+    if (!scalars.empty()) out << "parameters   " << scalars << "\n";
+    out << model.describe(d);
     const Rgb mean = make_texture(d)->mean();
     out << "texture mean " << format("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";
     return out.str();

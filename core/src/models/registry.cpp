@@ -175,9 +175,15 @@ json_fields::Json parameter_json(const ParameterInfo& p)
 void table_rows(const ParameterInfo& p, const std::string& parent, std::string& out)
 {
     const std::string key = parent.empty() ? p.key : parent + "." + p.key;
-    auto cell = [](const std::string& text) { return text.empty() ? std::string("—") : text; };
-    out += "| `" + key + "`" + (p.optional ? " (optional)" : "") + " | " + p.type + " | " + cell(p.range) + " | " + cell(p.default_value) + " | " + cell(p.unit) +
-           " | " + cell(p.doc) + " |\n";
+    // Markdown cells: "|" would end the cell.
+    auto cell = [](const std::string& text) {
+        if (text.empty()) return std::string("—");
+        std::string escaped;
+        for (char c : text) escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+        return escaped;
+    };
+    out += "| `" + key + "`" + (p.optional ? " (optional)" : "") + " | " + cell(p.type) + " | " + cell(p.range) + " | " +
+           cell(p.default_value) + " | " + cell(p.unit) + " | " + cell(p.doc) + " |\n";
     for (const ParameterInfo& field : p.fields) table_rows(field, key, out);
 }
 

@@ -74,11 +74,14 @@ inline void check_in_range(double value, const NumberRange& range, const std::st
                               number_text(value));
 }
 
-/// The documentation of one field: default (as text; "" when none applies), unit, one line.
+/// The documentation of one field: default (as text; "" when none applies), unit, its meaning
+/// and constraints, and (optionally) the allowed values in words when the declared range does
+/// not say it all (e.g. "a power of two in [4, 4096]").
 struct FieldDoc {
     std::string default_value;
     std::string unit;
     std::string doc;
+    std::string range = {};
 };
 
 /// What a reader may need beyond the JSON: where the .stex is (files kept beside it).
@@ -167,7 +170,7 @@ public:
     ParameterSchema& numbers(const char* key, std::array<double, N> Struct::*member, NumberRange range, FieldDoc doc,
                              Check extra = {})
     {
-        ParameterInfo info = make_info(key, "numbers[" + std::to_string(N) + "]", range.bounded() ? range.text() : "finite", doc);
+        ParameterInfo info = make_info(key, "array of " + std::to_string(N) + " numbers", range.bounded() ? range.text() : "finite", doc);
         return custom(
             info, [member](const Field& f, Struct& s, const ReadContext&) { s.*member = f.numbers<N>(); },
             [member](const Struct& s) { return Json(s.*member); },
@@ -181,7 +184,7 @@ public:
     ParameterSchema& numbers(const char* key, std::vector<double> Struct::*member, FieldDoc doc, Check extra = {})
     {
         return custom(
-            make_info(key, "numbers", "", doc), [member](const Field& f, Struct& s, const ReadContext&) { s.*member = f.numbers(); },
+            make_info(key, "array of numbers", "", doc), [member](const Field& f, Struct& s, const ReadContext&) { s.*member = f.numbers(); },
             [member](const Struct& s) { return Json(s.*member); }, extra);
     }
 
@@ -190,7 +193,7 @@ public:
                                      Check extra = {})
     {
         return custom(
-            make_info(key, "numbers[3][]", "", doc),
+            make_info(key, "3 arrays of numbers", "", doc),
             [member](const Field& f, Struct& s, const ReadContext&) {
                 std::vector<Field> channels = f.elements(3, "channels");
                 for (std::size_t c = 0; c < 3; ++c) (s.*member)[c] = channels[c].numbers();
@@ -235,7 +238,7 @@ public:
     ParameterSchema& list(const char* key, std::vector<Sub> Struct::*member, const ParameterSchema<Sub>& sub, FieldDoc doc,
                           Check extra = {})
     {
-        ParameterInfo info = make_info(key, "list of objects", "", doc);
+        ParameterInfo info = make_info(key, "array of objects", "", doc);
         info.fields = sub.infos();
         return custom(
             info,
@@ -311,7 +314,8 @@ private:
     };
     static ParameterInfo make_info(const char* key, std::string type, std::string range, const FieldDoc& doc)
     {
-        return {key, std::move(type), std::move(range), doc.default_value, doc.unit, doc.doc, {}, false};
+        return {key, std::move(type), doc.range.empty() ? std::move(range) : doc.range, doc.default_value, doc.unit, doc.doc,
+                {}, false};
     }
 
     std::vector<Entry> entries_;

@@ -49,10 +49,14 @@ ParameterSchema<GaborParameters> gabor_schema()
     ParameterSchema<P> schema;
     schema.enumeration("kind", &P::kind, to_string, gabor_kind_from_string,
                        {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid},
-                       {"isotropic", "", "which frequencies the kernels draw: on the sphere |ω| = F, along direction, "
-                                         "or on the circle normal to direction"});
-    schema.numbers("direction", &P::direction, {}, {"[0, 0, 1]", "", "unit vector in (u, v, w): the frequency direction "
-                                                                   "(anisotropic) or the frequency plane's normal (hybrid)"},
+                       {"isotropic", "", "Which frequencies the kernels draw: isotropic (uniform on the sphere |ω| = F), "
+                                         "anisotropic (ω = F·direction) or hybrid (uniform on the circle |ω| = F in the "
+                                         "plane normal to direction)."});
+    schema.numbers("direction", &P::direction, {}, {"[0, 0, 1]", "", "A unit vector (length within 1e-4 of 1) in solid texture space "
+                                                                   "(u, v, w): the frequency direction (anisotropic) or the normal "
+                                                                   "of the frequency plane (hybrid). Unused by isotropic noise, but "
+                                                                   "still a unit vector.",
+                                                     "unit vector"},
                    [](const P& p, const std::string& path, const std::string& source) {
                        double length2 = 0;
                        for (double d : p.direction) length2 += d * d;
@@ -62,11 +66,14 @@ ParameterSchema<GaborParameters> gabor_schema()
                                                  " of 1), its length is " + number_text(std::sqrt(length2)));
                    });
     schema.number("bandwidth", &P::bandwidth, bandwidth_range,
-                  {"1", "", "a / F: the kernels' bandwidth relative to their octave's frequency"});
+                  {"1", "", "Kernel bandwidth relative to its frequency, a/F, the same for every octave."});
     schema.number("impulses_per_kernel", &P::impulses_per_kernel, impulse_range,
-                  {"16", "impulses", "mean number of impulses whose kernel covers a point: quality vs cost"});
+                  {"16", "impulses", "Mean number of kernels overlapping a point (within the 5 % envelope radius): "
+                                    "quality vs cost, which grows linearly with it."});
     schema.numbers("frequencies", &P::frequencies,
-                   {"", "cycles / exemplar px", "the octaves' frequencies F_k, 1 to 24 of them, each in [1e-06, 1]"},
+                   {"", "cycles / exemplar px", "Octave frequencies F_k. stochtex writes them finest first, an octave apart, "
+                                                         "but any order and spacing is valid.",
+                    "1 to 24, each in [1e-06, 1]"},
                    [](const P& p, const std::string& path, const std::string& source) {
                        const std::size_t octaves = p.frequencies.size();
                        if (octaves < 1 || octaves > max_octaves)
@@ -78,7 +85,9 @@ ParameterSchema<GaborParameters> gabor_schema()
                    });
     schema.channel_numbers(
         "weights", &P::weights,
-        {"", "", "per decorrelated channel, the standard deviation of each octave (≥ 0; one per frequency)"},
+        {"", "", "weights[c][k]: the standard deviation of octave k in decorrelated channel c; as many per channel "
+                 "as frequencies.",
+         "each ≥ 0"},
         [](const P& p, const std::string& key_path, const std::string& source) {
             const std::size_t octaves = p.frequencies.size();
             for (std::size_t channel = 0; channel < 3; ++channel) {

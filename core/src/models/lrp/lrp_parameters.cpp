@@ -117,13 +117,19 @@ ParameterSchema<LrpParameters> lrp_schema()
     using P = LrpParameters;
     ParameterSchema<P> schema;
     schema.integer("spectrum_size", &P::spectrum_size, 1, max_lrp_spectrum_size,
-                   {"", "bins", "T: frequency bins are k / T cycles per exemplar px; a power of two in [4, 4096]"});
-    ParameterInfo strata{"strata", "list of objects", "1 to 16 (0 with a structure)", "", "",
-                         "random-phase strata of equal energy, each with its own lattice of windows",
-                         {{"spacing", "number", "[0.25, 1e+06]", "", "exemplar px", "Δ_S: lattice spacing and window size", {}},
-                          {"sigma", "numbers[3]", "≥ 0", "", "", "the stratum's standard deviation per decorrelated channel", {}},
-                          {"substrata", "list of integer lists", "1 to 256", "", "bins",
-                           "per sub-stratum, its frequency bins kx0, ky0, kx1, ky1, … (up to 64 pairs, within ±T/2)", {}}}};
+                   {"", "bins", "T: frequency bins k stand for k / T cycles per exemplar pixel. The structure repeats "
+                                "every T exemplar pixels.",
+                    "a power of two in [4, 4096]"});
+    ParameterInfo strata{"strata", "array of objects", "1 to 16 (0 when structure is present)", "", "",
+                         "Random-phase strata of equal energy, each with its own lattice of windows.",
+                         {{"spacing", "number", "[0.25, 1e6]", "", "exemplar px", "Δ_S: lattice spacing and window size.", {}},
+                          {"sigma", "array of 3 numbers", "each ≥ 0", "", "",
+                           "Standard deviation of the stratum's noise per decorrelated channel.", {}},
+                          {"substrata", "array of arrays of integers", "1 to 256", "", "bins",
+                           "The stratum's cosines per window. Each is a flat list of 1 to 64 bins kx0, ky0, kx1, ky1, …, "
+                           "every component in [−T/2, T/2]: a lattice point draws one bin uniformly and jitters it "
+                           "within its cell.",
+                           {}}}};
     schema.custom(
         strata,
         [](const Field& f, P& p, const ReadContext&) {
@@ -141,15 +147,24 @@ ParameterSchema<LrpParameters> lrp_schema()
             return strata;
         });
     ParameterInfo structure{"structure", "object | null", "", "", "",
-                            "the fixed-phase structure (null: noise only, r = 0): the photo's strongest frequencies, blockwise",
-                            {{"block_size", "integer", "power of two dividing spectrum_size", "", "exemplar px", "B", {}},
-                             {"fit_size", "integer", "[block_size, 2·spectrum_size]", "", "exemplar px",
-                              "E: block frequencies are k / E cycles per exemplar px", {}},
-                             {"random_placement", "boolean", "", "", "", "blocks of half a crop shifted by random offsets", {}},
-                             {"turbulence", "number", "[0, spectrum_size]", "", "exemplar px", "displacement σ; 0: none", {}},
-                             {"coefficient_step", "number", "[1e-12, 1]", "", "", "coefficients are stored as integer multiples of it", {}},
-                             {"blocks", "list of objects", "(spectrum_size / block_size)²", "", "",
-                              "per block: frequencies (kx, ky pairs) and per channel coefficients (re, im per frequency)", {}}}};
+                            "The fixed-phase structure: the photo's strongest frequencies, blockwise; null for noise by "
+                            "example only (r = 0).",
+                            {{"block_size", "integer", "a power of two dividing T into at most 64 blocks per side", "",
+                              "exemplar px", "B.", {}},
+                             {"fit_size", "integer", "[B, 2T]", "", "exemplar px", "E: block frequencies are k / E cycles per "
+                                                                               "exemplar pixel.", {}},
+                             {"random_placement", "boolean", "", "", "",
+                              "Shift cells of T/2 by random offsets (cross-faded over ⅛ cell).", {}},
+                             {"turbulence", "number", "[0, T]", "", "exemplar px",
+                              "Standard deviation of the displacement; 0: none.", {}},
+                             {"coefficient_step", "number", "[1e-12, 1]", "", "",
+                              "Block coefficients are stored as integer multiples of it (stochtex picks a power of ten "
+                              "≈ 1/1000 of the largest coefficient).", {}},
+                             {"blocks", "array of objects", "exactly (T/B)², row-major", "", "",
+                              "{\"frequencies\": [kx0, ky0, …], \"coefficients\": [[re0, im0, …], […], […]]}: 1 to 256 "
+                              "bins (components in [−E/2, E/2]) and, per channel, one re, im pair per bin as integers "
+                              "n (|n| ≤ 2^40) standing for n · coefficient_step. Channel c of the block is "
+                              "Σ_t re_t cos θ_t − im_t sin θ_t, θ_t = 2π k_t·(x − x_b)/E, x_b the block's centre.", {}}}};
     schema.custom(
         structure,
         [](const Field& f, P& p, const ReadContext&) {

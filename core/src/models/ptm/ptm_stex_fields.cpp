@@ -76,9 +76,12 @@ ParameterSchema<PtmParameters> ptm_schema()
     using P = PtmParameters;
     ParameterSchema<P> schema;
     schema.enumeration("colour", &P::colour, to_string, ptm_colour_from_string, {PtmColour::lrgb, PtmColour::rgb},
-                       {"lrgb", "", "lrgb: a luminance function times a per-texel chroma; rgb: a function per channel"});
-    schema.numbers("light", &P::light, {}, {"[0, 0, 1]", "", "unit light direction the texture is evaluated for: x right, "
-                                                           "y up, z out of the surface (z > 0); hint stex:light"},
+                       {"lrgb", "", "lrgb: one luminance function times a per-texel chroma (9 channels); rgb: one function "
+                                   "per channel (18 channels)."});
+    schema.numbers("light", &P::light, {}, {"[0, 0, 1]", "", "The light direction the texture is evaluated for: x to the "
+                                                           "image's right, y to its top, z out of the surface (open-time "
+                                                           "hint stex:light, stex ptm relight --light).",
+                                                     "unit vector, z > 0"},
                    [](const P& ptm, const std::string& path, const std::string& source) {
                        const auto& l = ptm.light;
                        const double length = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
@@ -89,11 +92,14 @@ ParameterSchema<PtmParameters> ptm_schema()
                        if (!(l[2] > 0)) json_fields::fail(source, path, "must point out of the surface (z > 0)");
                    });
     ParameterInfo coefficients{"coefficients", "object", "", "", "",
-                               "the coefficient maps, a float EXR beside the .stex",
-                               {{"file", "string", "a bare file name", "<stem>.ptm.exr", "", "written by write_stex", {}},
-                                {"width", "integer", "[1, 4096]", "", "texels", "", {}},
-                                {"height", "integer", "[1, 4096]", "", "texels", "", {}},
-                                {"checksum", "string", "", "", "", "of the maps: a stale or foreign file is an error", {}}}};
+                               "The coefficient maps: a float EXR beside the .stex (see below).",
+                               {{"file", "string", "a file name without directories (no / or \\; not . or ..)",
+                                 "NAME.ptm.exr", "", "Must exist beside the .stex; write_stex writes it as NAME.ptm.exr for NAME.stex.", {}},
+                                {"width", "integer", "[1, 4096]", "", "texels", "Must equal the file's.", {}},
+                                {"height", "integer", "[1, 4096]", "", "texels", "Must equal the file's.", {}},
+                                {"checksum", "string", "\"fnv1a64:\" and 16 hex digits", "", "",
+                                 "FNV-1a over the width, height, channel count and the floats' bits in channel order; must "
+                                 "match the file (a stale or foreign file is an error, not a different texture).", {}}}};
     schema.custom(
         coefficients, read_coefficients,
         [](const P& ptm) {
@@ -105,9 +111,12 @@ ParameterSchema<PtmParameters> ptm_schema()
             return json;
         },
         check_coefficients);
-    ParameterInfo unbounded{"unbounded", "object", "optional", "", "",
-                            "present: the maps are tiled and blended over a triangle grid (no repetition)",
-                            {{"triangle_edge", "number", "[0.015625, 1]", "", "maps widths", "the grid's triangle edge", {}}}};
+    ParameterInfo unbounded{"unbounded", "object", "", "", "",
+                            "Present: the texture is unbounded — the maps tiled and blended over a triangle grid with one "
+                            "set of tiles for all coefficients, seeded by seed (the maps should tile). Absent: the maps "
+                            "repeat.",
+                            {{"triangle_edge", "number", "[0.015625, 1]", "", "maps widths",
+                              "The grid's edge in widths of the maps' shorter side.", {}}}};
     schema.optional_custom(
         unbounded, [](const P& ptm) { return ptm.unbounded; },
         [](const json_fields::Field& f, P& ptm, const ReadContext&) {

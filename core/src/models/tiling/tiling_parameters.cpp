@@ -66,10 +66,15 @@ std::vector<ParameterInfo> image_fields()
 {
     return {{"width", "integer", "power of two", "", "px", "", {}},
             {"height", "integer", "power of two", "", "px", "", {}},
-            {"channels", "integer", "[1, 3]", "", "", "", {}},
+            {"channels", "integer", "[1, 3]", "", "", "what the output needs", {}},
             {"bits", "integer", "8 | 16", "", "", "bits per stored sample", {}},
-            {"ranges", "numbers[2] per channel", "min ≤ max", "", "", "the values sample 0 and sample 2^bits − 1 stand for", {}},
-            {"png", "string", "≤ 16 MiB", "", "", "base64 PNG: the planes stacked vertically, grey", {}}};
+            {"ranges", "array of channels pairs of numbers", "min ≤ max", "", "",
+             "[min, max] of each channel: sample q stands for min + q / (2^bits − 1) · (max − min)", {}},
+            {"png", "string", "≤ 16 MiB of text", "", "",
+             "Base64 (RFC 4648, padded, no whitespace) of a PNG holding exactly width × channels·height grey samples of "
+             "bits bits: the channel planes stacked top to bottom (grey, so no colour space, gamma or alpha handling can "
+             "change the samples)",
+             {}}};
 }
 
 Json image_json(const QuantisedImage& image)
@@ -145,13 +150,17 @@ ParameterSchema<TilingParameters> tiling_schema()
     ParameterSchema<P> schema;
     schema.enumeration("output", &P::output, to_string, tiling_output_from_string,
                        {TilingOutput::colour, TilingOutput::colour_map, TilingOutput::normal_map},
-                       {"colour", "", "what the blended channels are: colour channels, two noises indexing a colour map, "
-                                      "or two slopes of a normal map"});
+                       {"colour", "", "colour: 3 decorrelated colour channels (histogram maps, then mean + basis · y); "
+                                      "colour_map: 2 noises in [0, 1] indexing colour_map; normal_map: 2 slopes ∂h/∂x, ∂h/∂y "
+                                      "per exemplar pixel (a tangent-space normal map)."});
     schema.number("triangle_edge", &P::triangle_edge, {1.0 / 64, 1, "exemplar widths"},
-                  {"0.288675", "exemplar widths", "edge of the triangle grid (1/(2√3) is Deliot–Heitz's)"});
+                  {"0.288675", "exemplar widths", "The triangle grid's edge in widths of the exemplar's shorter side; "
+                                                  "stochtex writes 1/(2√3) (Deliot–Heitz): hexagonal tiles ≈ 0.58 exemplar "
+                                                  "widths across."});
     ParameterInfo exemplar{"exemplar", "image", "", "", "",
-                           "the periodic exemplar: channels × width × height samples (sides powers of two in [16, 1024]) "
-                           "quantised to bits, as base64 PNG",
+                           "3 channels for colour, 2 otherwise; periodic (tiles are cut anywhere, with wrap); sides "
+                           "powers of two in [16, 1024]. For colour, a channel with a histogram map holds standard-normal "
+                           "values (the map's input), the others channel values.",
                            image_fields()};
     schema.custom(
         exemplar, [](const Field& f, P& p, const ReadContext&) { p.exemplar = read_image(f); }, [](const P& p) { return image_json(p.exemplar); },
@@ -160,8 +169,8 @@ ParameterSchema<TilingParameters> tiling_schema()
                         max_tiling_exemplar_side, source);
         });
     ParameterInfo colour_map{"colour_map", "image | null", "", "", "",
-                             "colour_map output only (else null): the 2D colour map S, square, 3 channels of sRGB values "
-                             "in [0, 1]; x follows noise 0, y noise 1",
+                             "Only (and always) for colour_map: 3 channels of sRGB-encoded colour in [0, 1], square, "
+                             "sides powers of two in [8, 1024]; x follows noise 0, y noise 1. null otherwise.",
                              image_fields()};
     schema.custom(
         colour_map,

@@ -37,8 +37,10 @@ ParameterSchema<WaveletParameters> wavelet_schema()
     ParameterSchema<WaveletParameters> schema;
     schema.channel_numbers(
         "band_weights", &WaveletParameters::band_weights,
-        {"", "", "per decorrelated channel, the weight w_j of band j (j = 0 finest: [1/4, 1/2) cycles / exemplar px; "
-                 "band j: [2^-(j+2), 2^-(j+1))); 1 to 24 bands, ≥ 0, the same count for every channel"},
+        {"", "", "band_weights[c][j] is the weight of band j for decorrelated channel c. The three channels have the "
+                 "same number of bands, 1 to 24; every weight is ≥ 0. Band 0 is the finest: its frequencies lie in "
+                 "[1/4, 1/2) cycles per exemplar pixel; band j covers [2^-(j+2), 2^-(j+1)).",
+         "1 to 24 bands, each ≥ 0"},
         [](const WaveletParameters& p, const std::string& key_path, const std::string& source) {
             const auto& weights = p.band_weights;
             for (std::size_t channel = 0; channel < 3; ++channel) {
