@@ -27,12 +27,21 @@ namespace {
 
 bool have_blender() { return test::on_path("blender"); }
 
-/// Runs scenes/blender/<script> in a headless Blender with its own user-scripts folder (the
-/// add-on is installed there, not in the user's profile) and the built stex.
+/// The environment of a Blender run: its own user-scripts folder (the add-on is installed
+/// there, not in the user's profile), the built stex, and its own temporary folder — the checks
+/// count the add-on's temporary folders, so tests running at the same time must not see each
+/// other's.
+std::string blender_environment(const std::string& out)
+{
+    std::filesystem::create_directories(out + "/tmp");
+    return "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") + " TMPDIR=" + test::shell_quote(out + "/tmp") +
+           " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI);
+}
+
+/// Runs scenes/blender/<script> in a headless Blender (blender_environment()).
 test::CommandResult run_blender(const std::string& script, const std::string& out, const std::string& extra = "")
 {
-    const std::string line = "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") +
-                             " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI) +
+    const std::string line = blender_environment(out) +
                              " timeout 300 blender -b --factory-startup --python " +
                              test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/" + script) +
                              " -- --addon " + test::shell_quote(STOCHTEX_ADDON_ZIP) + " --photo " +
@@ -143,8 +152,7 @@ TEST(BlenderScene, InteractiveOperatorIsModalCancellableAndUndoable)
     if (!have_blender() || !test::on_path("xvfb-run"))
         GTEST_SKIP() << "needs blender and xvfb-run (scripts/install-deps.sh --with-blender)";
     const std::string out = test::temp_dir("blender-modal");
-    const std::string line = "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") +
-                             " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI) +
+    const std::string line = blender_environment(out) +
                              " timeout 300 xvfb-run -a -s '-screen 0 1280x800x24' blender --factory-startup "
                              "--enable-event-simulate --python " +
                              test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/modal_checks.py") +

@@ -1,6 +1,7 @@
 #include <stochtex/describe.h>
 #include <stochtex/texture.h>
 
+#include "analysis/info_text.h"
 #include "models/model.h"
 
 
@@ -11,12 +12,6 @@
 namespace stochtex {
 
 namespace {
-std::string format(const char* pattern, double a, double b = 0, double c = 0)
-{
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-    return buffer;
-}
 }  // namespace
 
 std::string describe(const TextureDescription& d)
@@ -30,9 +25,9 @@ std::string describe(const TextureDescription& d)
         out << "source       " << d.provenance.source << " (" << d.provenance.source_width << "x"
             << d.provenance.source_height << ", " << d.provenance.input_colour_space << ")\n";
     out << "colour       " << to_string(d.colour_mode) << ", " << d.colour_space << "\n";
-    out << "mean         " << format("%.5f %.5f %.5f", d.mean[0], d.mean[1], d.mean[2]) << "\n";
+    out << "mean         " << info_text("%.5f %.5f %.5f", d.mean[0], d.mean[1], d.mean[2]) << "\n";
     for (int r = 0; r < 3; ++r)
-        out << (r == 0 ? "basis        " : "             ") << format("%+.4f %+.4f %+.4f", d.basis[r][0], d.basis[r][1], d.basis[r][2])
+        out << (r == 0 ? "basis        " : "             ") << info_text("%+.4f %+.4f %+.4f", d.basis[r][0], d.basis[r][1], d.basis[r][2])
             << "\n";
     for (int c = 0; c < 3; ++c) {
         out << "histogram " << c << "  ";
@@ -40,7 +35,7 @@ std::string describe(const TextureDescription& d)
             out << "off (Gaussian)\n";
             continue;
         }
-        out << d.histograms[c].z.size() << " knots, values " << format("%.4f .. %.4f", d.histograms[c].value.front(), d.histograms[c].value.back())
+        out << d.histograms[c].z.size() << " knots, values " << info_text("%.4f .. %.4f", d.histograms[c].value.front(), d.histograms[c].value.back())
             << "\n";
     }
     const Model& model = model_of(d);
@@ -58,7 +53,7 @@ std::string describe(const TextureDescription& d)
     if (!scalars.empty()) out << "parameters   " << scalars << "\n";
     out << model.describe(d);
     const Rgb mean = make_texture(d)->mean();
-    out << "texture mean " << format("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";
+    out << "texture mean " << info_text("%.5f %.5f %.5f", mean[0], mean[1], mean[2]) << " (limit of minification)\n";
     return out.str();
 }
 

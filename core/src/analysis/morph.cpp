@@ -4,6 +4,7 @@
 
 #include <stochtex/channel_map.h>
 
+#include "numerics/interpolation.h"
 #include "colour/histogram_map.h"
 #include "models/model.h"
 
@@ -23,8 +24,6 @@ Eigen::Matrix3d to_eigen(const std::array<std::array<double, 3>, 3>& m)
         for (int c = 0; c < 3; ++c) result(r, c) = m[r][c];
     return result;
 }
-
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 /// A channel's map sampled at the knots `z`; a Gaussian channel (no map) is the line σ·z.
 std::vector<double> map_values_at(const HistogramMap& map, double sigma, const std::vector<double>& z)

@@ -150,6 +150,24 @@ private:
     ParameterSchema<Parameters> schema_;
 };
 
+/// A ModelOf whose texture is `TextureType`, made from (description) and, for the periodic
+/// form, (description, period).
+template <class Parameters, class TextureType>
+class TextureModelOf : public ModelOf<Parameters> {
+public:
+    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
+    {
+        return std::make_unique<TextureType>(description);
+    }
+    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
+    {
+        return std::make_unique<TextureType>(description, period);
+    }
+
+protected:
+    using ModelOf<Parameters>::ModelOf;
+};
+
 // ---- The registry -------------------------------------------------------------------------------
 
 /// Every registered model, in registration order (built-in models first: registry.cpp).

@@ -53,6 +53,19 @@ constexpr double max_footprint_anisotropy = 8;
 /// (texture units → noise units), with the anisotropy clamped.
 Symmetric2 filter_covariance(double j00, double j01, double j10, double j11, double scale);
 
+/// The same for a 2D footprint (the Jacobian of (u, v)), or a solid one projected on a tangent
+/// frame (tangent_footprint): the one conversion every analytically filtered model uses.
+inline Symmetric2 filter_covariance(const Footprint2D& footprint, double scale)
+{
+    return filter_covariance(footprint.dudx, footprint.dudy, footprint.dvdx, footprint.dvdy, scale);
+}
+
+/// A surface point's footprint in the tangent coordinates (t, b) of `frame`.
+inline Footprint2D tangent_footprint(const TangentFrame& frame, const SurfacePoint& point)
+{
+    return {dot3(frame.t, point.dpdx), dot3(frame.b, point.dpdx), dot3(frame.t, point.dpdy), dot3(frame.b, point.dpdy)};
+}
+
 /// Σ − v·I with negative eigenvalues clamped to 0: the blur still to apply when `v` (per axis) is
 /// already there (Gaussian blurs compose by adding covariances).
 Symmetric2 without_isotropic_blur(const Symmetric2& sigma, double v);

@@ -1,6 +1,8 @@
 // The gabor model (paper 001) in the registry: its parameter schema, analysis options, fit,
 // morph and `stex info` lines. The maths is in gabor_kernel, gabor_noise, gabor_statistics,
 // gabor_fit and gabor_texture.
+#include "analysis/info_text.h"
+#include "numerics/interpolation.h"
 #include "models/gabor/gabor_fit.h"
 #include "models/gabor/gabor_noise.h"
 #include "models/gabor/gabor_texture.h"
@@ -121,18 +123,9 @@ ModelInfo gabor_info()
     return info;
 }
 
-std::string format(const char* pattern, double a, double b = 0, double c = 0)
-{
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-    return buffer;
-}
-
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
-
-class GaborModel final : public ModelOf<GaborParameters> {
+class GaborModel final : public TextureModelOf<GaborParameters, GaborTexture> {
 public:
-    GaborModel() : ModelOf(gabor_info(), gabor_schema())
+    GaborModel() : TextureModelOf(gabor_info(), gabor_schema())
     {
         AnalysisOption bandwidth = number_option(
             "bandwidth", 1.0 / 16, 16, {"auto", "", "kernel bandwidth a / F; auto (or 0): chosen by the fit"}, "auto");
@@ -156,14 +149,6 @@ public:
              bandwidth});
     }
 
-    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
-    {
-        return std::make_unique<GaborTexture>(description);
-    }
-    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
-    {
-        return std::make_unique<GaborTexture>(description, period);
-    }
 
     std::string describe(const TextureDescription& d) const override
     {
@@ -171,20 +156,20 @@ public:
         const GaborParameters& g = parameters(d);
         out << "gabor        " << to_string(g.kind);
         if (g.kind != GaborKind::isotropic)
-            out << format(g.kind == GaborKind::anisotropic ? ", frequency direction (%.3f, %.3f, %.3f)"
+            out << info_text(g.kind == GaborKind::anisotropic ? ", frequency direction (%.3f, %.3f, %.3f)"
                                                            : ", frequency plane normal (%.3f, %.3f, %.3f)",
                           g.direction[0], g.direction[1], g.direction[2]);
-        out << "; bandwidth a/F " << format("%.3g", g.bandwidth) << ", " << format("%.3g", g.impulses_per_kernel)
+        out << "; bandwidth a/F " << info_text("%.3g", g.bandwidth) << ", " << info_text("%.3g", g.impulses_per_kernel)
             << " impulses per kernel\n";
         out << "octave  cycles/px  wavelength px  kernel radius px     w[0]      w[1]      w[2]\n";
         for (std::size_t k = 0; k < g.frequencies.size(); ++k) {
             const double f = g.frequencies[k];
-            out << format("%6.0f  %9.5f  %13.1f", double(k), f, 1 / f)
-                << format("  %16.1f", GaborNoise::support_radius(g.bandwidth * f))
-                << format("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]) << "\n";
+            out << info_text("%6.0f  %9.5f  %13.1f", double(k), f, 1 / f)
+                << info_text("  %16.1f", GaborNoise::support_radius(g.bandwidth * f))
+                << info_text("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]) << "\n";
         }
         for (int c = 0; c < 3; ++c)
-            out << "sigma_M[" << c << "]   " << format("%.5f", gabor_channel_sigma(g.weights[c]))
+            out << "sigma_M[" << c << "]   " << info_text("%.5f", gabor_channel_sigma(g.weights[c]))
                 << " (octaves have unit variance, 2D and sliced)\n";
         return out.str();
     }

@@ -137,7 +137,7 @@ Rgb GaborTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 {
     const double ppu = description().pixels_per_unit;
     const Symmetric2 covariance =
-        render_blur(filter_covariance(footprint.dudx, footprint.dudy, footprint.dvdx, footprint.dvdy, ppu));
+        render_blur(filter_covariance(footprint, ppu));
     const double x = uv[0] * ppu, y = uv[1] * ppu;
     return synthesize(covariance, TangentFrame{}, [&](const GaborNoise& noise, const GaborFilter& filter, float* value) {
         noise.eval_2d(x, y, filter, value);
@@ -149,8 +149,7 @@ Rgb GaborTexture::eval_solid(const SurfacePoint& point) const
     const double ppu = description().pixels_per_unit;
     const TangentFrame frame = tangent_frame(point.n, point.dpdx);
     // The screen-to-tangent Jacobian: the footprint's derivatives in the (t, b) frame (paper §5).
-    const Symmetric2 covariance = render_blur(filter_covariance(dot3(frame.t, point.dpdx), dot3(frame.t, point.dpdy),
-                                                               dot3(frame.b, point.dpdx), dot3(frame.b, point.dpdy), ppu));
+    const Symmetric2 covariance = render_blur(filter_covariance(tangent_footprint(frame, point), ppu));
     const Vec3 p{point.p[0] * ppu, point.p[1] * ppu, point.p[2] * ppu};
     return synthesize(covariance, frame, [&](const GaborNoise& noise, const GaborFilter& filter, float* value) {
         noise.eval_sliced(p, frame, filter, value);

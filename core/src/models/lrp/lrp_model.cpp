@@ -24,9 +24,9 @@ ModelInfo lrp_info()
     return info;
 }
 
-class LrpModel final : public ModelOf<LrpParameters> {
+class LrpModel final : public TextureModelOf<LrpParameters, LrpTexture> {
 public:
-    LrpModel() : ModelOf(lrp_info(), lrp_schema())
+    LrpModel() : TextureModelOf(lrp_info(), lrp_schema())
     {
         declare_analysis_options(
             {integer_option("J", 1, 256,
@@ -46,14 +46,6 @@ public:
                            "auto")});
     }
 
-    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
-    {
-        return std::make_unique<LrpTexture>(description);
-    }
-    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
-    {
-        return std::make_unique<LrpTexture>(description, period);
-    }
     std::string describe(const TextureDescription& description) const override { return describe_lrp(description); }
 
     ModelParameters fit(const FitInput& input, Provenance& provenance) const override

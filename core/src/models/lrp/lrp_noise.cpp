@@ -22,7 +22,7 @@ constexpr double response_floor = 1.0 / 256;
 LrpFilter LrpFilter::from_footprint(const Footprint2D& footprint, double pixels_per_unit)
 {
     LrpFilter filter;
-    const Symmetric2 pixel = filter_covariance(footprint.dudx, footprint.dudy, footprint.dvdx, footprint.dvdy, pixels_per_unit);
+    const Symmetric2 pixel = filter_covariance(footprint, pixels_per_unit);
     filter.covariance = without_isotropic_blur(pixel, pixel_filter_sigma * pixel_filter_sigma);
     filter.major_sd = std::sqrt(std::max(0.0, filter.covariance.largest_eigenvalue()));
     filter.identity = !(filter.major_sd > 0);

@@ -25,28 +25,20 @@ ModelInfo ptm_info()
     return info;
 }
 
-class PtmModel final : public ModelOf<PtmParameters> {
+class PtmModel final : public TextureModelOf<PtmParameters, PtmTexture> {
 public:
-    PtmModel() : ModelOf(ptm_info(), ptm_schema()) {}
+    PtmModel() : TextureModelOf(ptm_info(), ptm_schema()) {}
 
     void validate(const TextureDescription& description, const std::string& source) const override
     {
         validate_ptm_colour_fields(description, source);
-        ModelOf::validate(description, source);
+        TextureModelOf::validate(description, source);
     }
     TextureDescription write_beside(const std::string& stex_path, const TextureDescription& description) const override
     {
         return write_ptm_coefficients_beside(stex_path, description);
     }
 
-    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
-    {
-        return std::make_unique<PtmTexture>(description);
-    }
-    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
-    {
-        return std::make_unique<PtmTexture>(description, period);
-    }
     std::string describe(const TextureDescription& description) const override { return describe_ptm(description); }
 
     TextureDescription example() const override

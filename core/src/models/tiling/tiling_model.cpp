@@ -23,9 +23,9 @@ ModelInfo tiling_info()
     return info;
 }
 
-class TilingModel final : public ModelOf<TilingParameters> {
+class TilingModel final : public TextureModelOf<TilingParameters, TilingTexture> {
 public:
-    TilingModel() : ModelOf(tiling_info(), tiling_schema())
+    TilingModel() : TextureModelOf(tiling_info(), tiling_schema())
     {
         declare_analysis_options(
             {integer_option("exemplar-size", 16, 1024,
@@ -35,18 +35,10 @@ public:
 
     void validate(const TextureDescription& description, const std::string& source) const override
     {
-        ModelOf::validate(description, source);
+        TextureModelOf::validate(description, source);
         validate_tiling_colour_fields(description, source);
     }
 
-    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
-    {
-        return std::make_unique<TilingTexture>(description);
-    }
-    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
-    {
-        return std::make_unique<TilingTexture>(description, period);
-    }
     std::string describe(const TextureDescription& description) const override { return describe_tiling(description); }
 
     ModelParameters fit(const FitInput& input, Provenance& provenance) const override

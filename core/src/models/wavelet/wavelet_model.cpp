@@ -1,6 +1,8 @@
 // The wavelet model (paper 000) in the registry: its parameter schema, analysis options, fit,
 // morph and `stex info` lines. The maths is in wavelet_noise, band_power, band_leakage and
 // wavelet_texture.
+#include "analysis/info_text.h"
+#include "numerics/interpolation.h"
 #include "models/model.h"
 #include "models/wavelet/band_leakage.h"
 #include "models/wavelet/band_power.h"
@@ -80,18 +82,9 @@ ModelInfo wavelet_info()
     return info;
 }
 
-std::string format(const char* pattern, double a, double b = 0, double c = 0)
-{
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, pattern, a, b, c);
-    return buffer;
-}
-
-double lerp(double a, double b, double t) { return a + (b - a) * t; }
-
-class WaveletModel final : public ModelOf<WaveletParameters> {
+class WaveletModel final : public TextureModelOf<WaveletParameters, WaveletTexture> {
 public:
-    WaveletModel() : ModelOf(wavelet_info(), wavelet_schema())
+    WaveletModel() : TextureModelOf(wavelet_info(), wavelet_schema())
     {
         declare_analysis_options({choice_option(
             "psd", {"periodic", "periodic-smooth"},
@@ -100,27 +93,19 @@ public:
              "(Moisan: no edge leak on non-tileable photos)"})});
     }
 
-    std::unique_ptr<Texture> make_texture(const TextureDescription& description) const override
-    {
-        return std::make_unique<WaveletTexture>(description);
-    }
-    std::unique_ptr<Texture> make_periodic_texture(const TextureDescription& description, const Vec2& period) const override
-    {
-        return std::make_unique<WaveletTexture>(description, period);
-    }
 
     std::string describe(const TextureDescription& d) const override
     {
         std::ostringstream out;
         const double band_variance = WaveletNoise2D::shared().variance();
-        out << "sigma_N^2    " << format("%.4f (2D band), %.4f (3D band)", band_variance, WaveletNoise3D::shared().variance())
+        out << "sigma_N^2    " << info_text("%.4f (2D band), %.4f (3D band)", band_variance, WaveletNoise3D::shared().variance())
             << "\n";
         out << "band  cycles/exemplar px     w[0]      w[1]      w[2]\n";
         const auto& w = parameters(d).band_weights;
         for (std::size_t j = 0; j < w[0].size(); ++j)
-            out << format("%4.0f  [1/%-5.0f, 1/%-5.0f)", double(j), std::ldexp(1.0, int(j) + 2), std::ldexp(1.0, int(j) + 1))
-                << format("  %8.5f  %8.5f  %8.5f", w[0][j], w[1][j], w[2][j]) << "\n";
-        for (int c = 0; c < 3; ++c) out << "sigma_M[" << c << "]   " << format("%.5f", wavelet_channel_sigma(w[c])) << "\n";
+            out << info_text("%4.0f  [1/%-5.0f, 1/%-5.0f)", double(j), std::ldexp(1.0, int(j) + 2), std::ldexp(1.0, int(j) + 1))
+                << info_text("  %8.5f  %8.5f  %8.5f", w[0][j], w[1][j], w[2][j]) << "\n";
+        for (int c = 0; c < 3; ++c) out << "sigma_M[" << c << "]   " << info_text("%.5f", wavelet_channel_sigma(w[c])) << "\n";
         return out.str();
     }
 
