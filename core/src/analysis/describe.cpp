@@ -46,9 +46,9 @@ std::string describe(const TextureDescription& d)
     for (const ParameterInfo& p : model.info().parameters) {
         if (!block.contains(p.key) || block[p.key].is_structured() || block[p.key].is_null()) continue;
         const json_fields::Json& value = block[p.key];
-        scalars += (scalars.empty() ? "" : ", ") + p.key + " " +
-                   (value.is_string() ? value.get<std::string>() : json_fields::format(value).substr(0, json_fields::format(value).size() - 1)) +
-                   (p.unit.empty() ? "" : " " + p.unit);
+        std::string text = value.is_string() ? value.get<std::string>() : json_fields::format(value);
+        if (!value.is_string()) text.pop_back();  // format() ends the document with a newline
+        scalars += (scalars.empty() ? "" : ", ") + p.key + " " + text + (p.unit.empty() ? "" : " " + p.unit);
     }
     if (!scalars.empty()) out << "parameters   " << scalars << "\n";
     out << model.describe(d);

@@ -29,12 +29,12 @@ struct ColourBasis;
 // ---- Analysis options declared by a model ------------------------------------------------------
 
 /// One `stex analyze` option of a model: its declaration and how its text is checked.
-/// `canonical` turns the user's text into the stored text or throws Error with the problem.
+/// `canonical` returns the text the fit reads (the user's, or a normal form such as "auto") or
+/// throws Error with the problem.
 struct AnalysisOption {
     ParameterInfo info;
     std::function<std::string(const std::string& text)> canonical;
 };
-
 
 /// What analysis hands a model's fit: the photo's decorrelated channels (Gaussianised where a
 /// histogram map was kept), the colour basis and the band count the photo supports.

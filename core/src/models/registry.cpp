@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <mutex>
 #include <sstream>
 
 namespace stochtex {
@@ -133,6 +134,9 @@ ModelRegistration::ModelRegistration(const Model& model)
 
 const std::vector<std::string>& known_models()
 {
+    // Error messages list the models, and the plugin opens files from many threads at once.
+    static std::mutex mutex;
+    const std::lock_guard<std::mutex> lock(mutex);
     std::vector<std::string>& list = names();
     if (list.size() != registry().size()) {
         list.clear();
