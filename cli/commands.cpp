@@ -35,6 +35,26 @@ std::pair<int, int> parse_size(const std::string& text, const char* option)
     return {w, h};
 }
 
+namespace {
+
+CLI::Validator finite_number_at_least_zero(bool zero_allowed)
+{
+    return CLI::Validator(
+        [zero_allowed](std::string& text) {
+            double value = 0;
+            const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
+                            (zero_allowed ? value >= 0 : value > 0);
+            return ok ? std::string() : std::string(zero_allowed ? "expected a finite number ≥ 0" : "expected a finite number > 0") +
+                                            ", got '" + text + "'";
+        },
+        zero_allowed ? "NONNEGATIVE" : "POSITIVE");
+}
+
+}  // namespace
+
+CLI::Validator positive_number() { return finite_number_at_least_zero(false); }
+CLI::Validator non_negative_number() { return finite_number_at_least_zero(true); }
+
 std::vector<std::string> analysable_models()
 {
     std::vector<std::string> names;
@@ -119,6 +139,14 @@ int RenderCommand::run() const
     settings.filter = !no_filter;
     settings.threads = threads;
     if (tileable && solid) throw Error("--tileable: solid renders are not periodic; drop --solid or --tileable");
+    // The core checks these bounds too (render(), make_periodic_texture()); checked here first
+    // so that the message names the option.
+    const double ppu = description.pixels_per_unit;
+    check_position(origin_u, ppu, "--u");
+    check_position(origin_v, ppu, "--v");
+    if (solid) check_position(z, ppu, "--z");
+    check_position(origin_u + settings.width * settings.units_per_pixel, ppu, "--scale: the image's right edge, --u + width × scale");
+    check_position(origin_v + settings.height * settings.units_per_pixel, ppu, "--scale: the image's bottom edge, --v + height × scale");
     // A tileable image is exactly one period of the periodic texture: it wraps without a seam.
     const auto texture_object =
         tileable ? make_periodic_texture(description, {settings.width * settings.units_per_pixel,
@@ -286,6 +314,9 @@ int BakeCommand::run() const
                     seconds);
         return 0;
     }
+    // The bake's period bounds its positions; the core checks it too, without the option's name.
+    check_position(size * scale / description.pixels_per_unit, description.pixels_per_unit,
+                   "--scale: the bake's period, size × scale");
     BakeOptions options;
     options.width = options.height = size;
     options.scale = scale;

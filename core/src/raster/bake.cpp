@@ -162,6 +162,16 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
         throw Error("solid bake: the position scale must be positive");
     const auto texture = make_texture(description);
     const PositionMap map = read_positions(positions_path);
+    // Positions come from a file: each must lie where a texture can be evaluated (texture.h),
+    // checked here because the workers below cannot report an error.
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x)
+            if (map.covered(x, y))
+                for (int c = 0; c < 3; ++c)
+                    if (!position_in_range(map.at(x, y)[c] * units_per_position, description.pixels_per_unit))
+                        check_position(map.at(x, y)[c] * units_per_position, description.pixels_per_unit,
+                                       positions_path + ": texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                           ") position × position scale");
     std::vector<float> out(map.rgba.size(), 0.0f);
     const int workers = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     std::atomic<int> next_row{0}, rows_done{0};
