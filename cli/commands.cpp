@@ -3,6 +3,7 @@
 #include "plot.h"
 #include "progress_bar.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/bake.h>
 #include <stochtex/describe.h>
 #include <stochtex/error.h>
@@ -19,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 namespace stex_cli {
 
@@ -288,11 +288,7 @@ int PovCommand::run() const
     options.source_name = std::filesystem::path(texture).filename().string();
     const pov::PovInclude include = pov::make_pov_include(description, options);
     if (!include.baked_image.empty()) write_image(image_path.string(), include.baked_image);
-    {
-        std::ofstream out(include_path, std::ios::binary);
-        out << include.text;
-        if (!out) throw Error(output + ": cannot write the POV-Ray include");
-    }
+    write_file_atomically(include_path.string(), include.text);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("wrote %s (%s mode, texture %s, %zu bytes) in %.2f s\n%s\n", output.c_str(), pov::to_string(options.mode),
                 options.name.c_str(), include.text.size(), seconds, include.summary.c_str());
@@ -346,11 +342,7 @@ int OslCommand::run() const
     options.tile_3d_path = (shown / tile_3d.filename()).string();
     const std::string text = osl::make_osl_shader(description, options);
     osl::write_noise_tiles(tile_2d.string(), tile_3d.string());
-    {
-        std::ofstream out(output, std::ios::binary);
-        out << text;
-        if (!out) throw Error(output + ": cannot write the OSL shader");
-    }
+    write_file_atomically(output, text);
     std::printf("wrote %s (shader %s, %zu bytes) and its noise tiles %s, %s\n", output.c_str(),
                 options.shader_name.c_str(), text.size(), tile_2d.c_str(), tile_3d.c_str());
     return 0;

@@ -4,12 +4,39 @@
 #include "ptm_commands.h"
 #include "tiling_commands.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
+
+namespace {
+
+// Every output is written to a temporary and renamed into place (stochtex/atomic_write.h), so
+// an interrupted run never leaves a half-written file under an output's name; this handler
+// removes the temporaries too, then dies of the signal so that the caller sees the interruption.
+extern "C" void remove_outputs_and_die(int signal_number)
+{
+    stochtex::remove_pending_outputs();
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+
+void install_signal_handlers()
+{
+    struct sigaction action {};
+    action.sa_handler = remove_outputs_and_die;
+    sigemptyset(&action.sa_mask);
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+    // Past a file-size limit (ulimit -f) the default action kills the process, leaving the
+    // temporary behind; ignored, the write fails with EFBIG and is reported like any other.
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -130,6 +157,7 @@ int main(int argc, char** argv)
         return app.exit(e);
     }
     set_progress_lines(progress_lines);
+    install_signal_handlers();
     if (app.get_subcommands().empty()) {
         std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, ptm, tiling); see stex --help\n");
         return 1;

@@ -1,14 +1,21 @@
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <memory>
 
 namespace stochtex {
 
@@ -96,8 +103,21 @@ Image read_image_linear(const std::string& path, const ImageReadOptions& options
 void write_image(const std::string& path, const Image& linear_rgb)
 {
     if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
-    auto output = OIIO::ImageOutput::create(path);
+    // The pixels go to a temporary renamed into place (atomic_write.h). Where the format takes
+    // an I/O proxy they go through a FILE of ours, whose error flag is checked at the end:
+    // OIIO's PNG writer reports no failed write (past a file-size limit it "succeeded" with a
+    // truncated file). Declared before `output`, so that they outlive it.
+    AtomicOutput file(path);
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(nullptr, &std::fclose);
+    std::unique_ptr<OIIO::Filesystem::IOFile> proxy;
+    auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
     if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    if (output->supports("ioproxy")) {
+        stream.reset(std::fopen(file.temporary().c_str(), "wb"));
+        if (!stream) throw Error(path + ": cannot write image: " + std::strerror(errno));
+        proxy = std::make_unique<OIIO::Filesystem::IOFile>(stream.get(), OIIO::Filesystem::IOProxy::Write);
+        if (!output->set_ioproxy(proxy.get())) throw Error(path + ": cannot write image: " + output->geterror());
+    }
     const bool linear = is_float_format(path);
     OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
@@ -110,9 +130,15 @@ void write_image(const std::string& path, const Image& linear_rgb)
         for (float& v : encoded.pixels) v = std::clamp(v, 0.0f, 1.0f);
         source = &encoded;
     }
-    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
+    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
         !output->close())
         throw Error(path + ": cannot write image: " + output->geterror());
+    if (stream) {
+        const bool failed = std::fflush(stream.get()) != 0 || std::ferror(stream.get());
+        const std::string reason = std::strerror(errno);
+        if (std::fclose(stream.release()) != 0 || failed) throw Error(path + ": cannot write image: " + reason);
+    }
+    file.commit();
 }
 
 }  // namespace stochtex
