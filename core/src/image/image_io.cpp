@@ -63,22 +63,35 @@ void convert_colour_space(Image& image, const std::string& from, const std::stri
 
 Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size)
 {
-    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    std::error_code ignored;
+    if (!std::filesystem::exists(path, ignored)) throw Error(path + ": no such file");
+    if (std::filesystem::is_directory(path, ignored)) throw Error(path + ": cannot read image: is a directory");
     auto input = OIIO::ImageInput::open(path);
     if (!input) throw Error(path + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec spec = input->spec();
     if (spec.width < min_size || spec.height < min_size)
         throw Error(path + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                     ", too small (at least " + std::to_string(min_size) + "x" + std::to_string(min_size) + ")");
-    const int channels = spec.nchannels;
+    // The header's size is checked before any pixel is read: a few bytes of header can claim
+    // gigabytes of pixels.
+    if (spec.width > max_read_side || spec.height > max_read_side ||
+        std::int64_t(spec.width) * spec.height > max_read_pixels)
+        throw Error(path + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    ", too large (at most " + std::to_string(max_read_side) + " pixels a side and " +
+                    std::to_string(max_read_pixels) + " = 2^26 pixels)");
+    // Only the channels used below (colour, or grey): extra channels cost no memory.
+    const int alpha = spec.alpha_channel;
+    const int colour_channels = (alpha >= 0 && alpha < 3) ? alpha : std::min(spec.nchannels, 3);
+    const int channels = std::max(1, std::min(spec.nchannels, 3));
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
+    // Some readers succeed with an error recorded: libjpeg decodes a truncated JPEG's missing
+    // rows as flat grey and only warns ("Premature end of JPEG file").
+    if (input->has_error()) throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
     input->close();
 
     Image image(spec.width, spec.height, 3);
-    const int alpha = spec.alpha_channel;
-    const int colour_channels = (alpha >= 0 && alpha < 3) ? alpha : std::min(channels, 3);
     for (std::size_t i = 0; i < image.pixel_count(); ++i)
         for (int c = 0; c < 3; ++c) {
             // Grey (and grey + alpha) is replicated; alpha and extra channels are dropped.
