@@ -36,8 +36,7 @@ void quantise(LrpStructure& structure)
     // rather than let the fitted description fail validation with a step the user never chose.
     if (!(structure.coefficient_step >= 1e-12 && structure.coefficient_step <= 1))
         throw Error("lrp: the photo's structure coefficients reach " + number_text(largest) +
-                    ", outside what a .stex stores (1e-9 to 1e4: scene-linear values up to a few thousand); "
-                    "scale the photo's values");
+                    ", outside what a .stex stores (1e-9 to 1e4); scale the photo's values");
     for (LrpBlock& block : structure.blocks)
         for (auto& channel : block.coefficients)
             for (double& c : channel) c = double(std::llround(c / structure.coefficient_step)) * structure.coefficient_step;
