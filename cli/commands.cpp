@@ -3,6 +3,7 @@
 #include "plot.h"
 #include "progress_bar.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/bake.h>
 #include <stochtex/describe.h>
 #include <stochtex/error.h>
@@ -19,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 namespace stex_cli {
 
@@ -34,6 +34,26 @@ std::pair<int, int> parse_size(const std::string& text, const char* option)
         throw Error(std::string(option) + ": expected WxH with 1 ≤ W, H ≤ 65536 (e.g. 512x512), got '" + text + "'");
     return {w, h};
 }
+
+namespace {
+
+CLI::Validator finite_number_at_least_zero(bool zero_allowed)
+{
+    return CLI::Validator(
+        [zero_allowed](std::string& text) {
+            double value = 0;
+            const bool ok = CLI::detail::lexical_cast(text, value) && std::isfinite(value) &&
+                            (zero_allowed ? value >= 0 : value > 0);
+            return ok ? std::string() : std::string(zero_allowed ? "expected a finite number ≥ 0" : "expected a finite number > 0") +
+                                            ", got '" + text + "'";
+        },
+        zero_allowed ? "NONNEGATIVE" : "POSITIVE");
+}
+
+}  // namespace
+
+CLI::Validator positive_number() { return finite_number_at_least_zero(false); }
+CLI::Validator non_negative_number() { return finite_number_at_least_zero(true); }
 
 std::vector<std::string> analysable_models()
 {
@@ -119,6 +139,14 @@ int RenderCommand::run() const
     settings.filter = !no_filter;
     settings.threads = threads;
     if (tileable && solid) throw Error("--tileable: solid renders are not periodic; drop --solid or --tileable");
+    // The core checks these bounds too (render(), make_periodic_texture()); checked here first
+    // so that the message names the option.
+    const double ppu = description.pixels_per_unit;
+    check_position(origin_u, ppu, "--u");
+    check_position(origin_v, ppu, "--v");
+    if (solid) check_position(z, ppu, "--z");
+    check_position(origin_u + settings.width * settings.units_per_pixel, ppu, "--scale: the image's right edge, --u + width × scale");
+    check_position(origin_v + settings.height * settings.units_per_pixel, ppu, "--scale: the image's bottom edge, --v + height × scale");
     // A tileable image is exactly one period of the periodic texture: it wraps without a seam.
     const auto texture_object =
         tileable ? make_periodic_texture(description, {settings.width * settings.units_per_pixel,
@@ -260,11 +288,7 @@ int PovCommand::run() const
     options.source_name = std::filesystem::path(texture).filename().string();
     const pov::PovInclude include = pov::make_pov_include(description, options);
     if (!include.baked_image.empty()) write_image(image_path.string(), include.baked_image);
-    {
-        std::ofstream out(include_path, std::ios::binary);
-        out << include.text;
-        if (!out) throw Error(output + ": cannot write the POV-Ray include");
-    }
+    write_file_atomically(include_path.string(), include.text);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("wrote %s (%s mode, texture %s, %zu bytes) in %.2f s\n%s\n", output.c_str(), pov::to_string(options.mode),
                 options.name.c_str(), include.text.size(), seconds, include.summary.c_str());
@@ -286,6 +310,9 @@ int BakeCommand::run() const
                     seconds);
         return 0;
     }
+    // The bake's period bounds its positions; the core checks it too, without the option's name.
+    check_position(size * scale / description.pixels_per_unit, description.pixels_per_unit,
+                   "--scale: the bake's period, size × scale");
     BakeOptions options;
     options.width = options.height = size;
     options.scale = scale;
@@ -315,11 +342,7 @@ int OslCommand::run() const
     options.tile_3d_path = (shown / tile_3d.filename()).string();
     const std::string text = osl::make_osl_shader(description, options);
     osl::write_noise_tiles(tile_2d.string(), tile_3d.string());
-    {
-        std::ofstream out(output, std::ios::binary);
-        out << text;
-        if (!out) throw Error(output + ": cannot write the OSL shader");
-    }
+    write_file_atomically(output, text);
     std::printf("wrote %s (shader %s, %zu bytes) and its noise tiles %s, %s\n", output.c_str(),
                 options.shader_name.c_str(), text.size(), tile_2d.c_str(), tile_3d.c_str());
     return 0;

@@ -32,6 +32,11 @@ private:
     std::map<std::string, std::pair<std::string, CLI::Option*>> model_options_;
 };
 
+/// Numeric option checks: a finite number > 0 (≥ 0). CLI11's PositiveNumber/NonNegativeNumber
+/// let NaN through and print their range with DBL_MAX written out in full (309 digits).
+CLI::Validator positive_number();
+CLI::Validator non_negative_number();
+
 /// Names of the registered models that analyse photos, and the --model help built from them.
 std::vector<std::string> analysable_models();
 std::string model_option_help();

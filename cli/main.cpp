@@ -4,12 +4,39 @@
 #include "ptm_commands.h"
 #include "tiling_commands.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
+
+namespace {
+
+// Every output is written to a temporary and renamed into place (stochtex/atomic_write.h), so
+// an interrupted run never leaves a half-written file under an output's name; this handler
+// removes the temporaries too, then dies of the signal so that the caller sees the interruption.
+extern "C" void remove_outputs_and_die(int signal_number)
+{
+    stochtex::remove_pending_outputs();
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+
+void install_signal_handlers()
+{
+    struct sigaction action {};
+    action.sa_handler = remove_outputs_and_die;
+    sigemptyset(&action.sa_mask);
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal_number, &action, nullptr);
+    // Past a file-size limit (ulimit -f) the default action kills the process, leaving the
+    // temporary behind; ignored, the write fails with EFBIG and is reported like any other.
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -44,7 +71,7 @@ int main(int argc, char** argv)
     a->add_option("--colourspace,--colorspace", analyze.colour_space,
                   "Colour space of the photo's values (default: what the file says, else sRGB)");
     a->add_option("--unit-size", analyze.unit_size_m, "Physical width of the photo in metres (for scenes)")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
 
     RenderCommand render;
     auto* r = app.add_subcommand("render", "Render a .stex texture to an image (EXR: scene-linear; PNG/JPEG: sRGB)");
@@ -52,7 +79,7 @@ int main(int argc, char** argv)
     r->add_option("-o,--output", render.output, "Output image (.exr, .png, .jpg, .tif)")->required();
     r->add_option("--size", render.size, "Output size WxH (default: the analysed photo's size)");
     r->add_option("--scale", render.scale, "Exemplar pixels per output pixel (2: zoomed out ×2)")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
     r->add_option("--u", render.origin_u, "Texture-space u of the image's left edge (texture units)")->capture_default_str();
     r->add_option("--v", render.origin_v, "Texture-space v of the image's top edge (texture units)")->capture_default_str();
     r->add_flag("--solid", render.solid, "Evaluate the solid (3D) texture on the plane w = Z");
@@ -60,8 +87,8 @@ int main(int argc, char** argv)
     r->add_flag("--no-filter", render.no_filter, "Point-sample instead of filtering each pixel's footprint");
     r->add_flag("--tileable", render.tileable,
                 "Make the image one period of the texture, so it tiles without a seam (band frequencies snap to fit)");
-    r->add_option("--threads", render.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
-    r->add_option("--seed", render.seed, "Override the texture's seed")->check(CLI::NonNegativeNumber);
+    r->add_option("--threads", render.threads, "Worker threads (0: all cores)")->check(non_negative_number())->capture_default_str();
+    r->add_option("--seed", render.seed, "Override the texture's seed")->check(non_negative_number());
 
     InfoCommand info;
     auto* i = app.add_subcommand("info", "Print a .stex texture's parameters and statistics");
@@ -87,16 +114,16 @@ int main(int argc, char** argv)
     b->add_option("-o,--output", bake.output, "Output image (.exr)")->required();
     b->add_option("--size", bake.size, "Level-0 texels per side")->check(CLI::Range(8, 32768))->capture_default_str();
     b->add_option("--scale", bake.scale, "Exemplar pixels per texel (1: the photo's pixel scale)")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
     b->add_option("--tile", bake.tile, "Tile size (a power of two, 8 to 4096)")->capture_default_str();
     b->add_flag("--half", bake.half, "Store 16-bit half floats instead of 32-bit floats");
-    b->add_option("--threads", bake.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
-    b->add_option("--seed", bake.seed, "Override the texture's seed")->check(CLI::NonNegativeNumber);
+    b->add_option("--threads", bake.threads, "Worker threads (0: all cores)")->check(non_negative_number())->capture_default_str();
+    b->add_option("--seed", bake.seed, "Override the texture's seed")->check(non_negative_number());
     b->add_option("--positions", bake.positions,
                   "Instead: the solid texture at the texels of this position map (RGBA float: xyz, alpha = covered), "
                   "e.g. a UV atlas of object coordinates baked by Blender");
     b->add_option("--position-scale", bake.position_scale, "With --positions: texture units per position unit")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
 
     OslCommand osl;
     auto* o = app.add_subcommand("osl", "Write an OSL shader with the texture's parameters built in (and the noise tiles it reads)");
@@ -130,6 +157,7 @@ int main(int argc, char** argv)
         return app.exit(e);
     }
     set_progress_lines(progress_lines);
+    install_signal_handlers();
     if (app.get_subcommands().empty()) {
         std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, ptm, tiling); see stex --help\n");
         return 1;

@@ -196,7 +196,7 @@ PtmCommands::PtmCommands(CLI::App& app) : options_(std::make_unique<Options>())
     o.relight->add_flag("--pixelwise", o.pixelwise, "With --compare: also the pixel RMSE (same surface region only)");
     o.relight->add_option("--size", o.render_size, "Render size WxH (default: the maps' size)");
     o.relight->add_option("--scale", o.scale, "Texels per output pixel (filtered through the MIP-mapped coefficients)")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
 
     o.export_maps = o.ptm->add_subcommand("export-maps", "Write normal and albedo maps estimated from a ptm .stex");
     o.export_maps->add_option("input", o.input, "ptm .stex")->required();
@@ -230,7 +230,7 @@ PtmCommands::PtmCommands(CLI::App& app) : options_(std::make_unique<Options>())
     o.relief->add_option("--lights-from", o.lights_from, "Use the directions of this sidecar instead of a spiral");
     o.relief->add_option("--downsample", o.downsample, "Box-filter the height map down by this factor")
         ->check(CLI::Range(1, 16))->capture_default_str();
-    o.relief->add_option("--depth", o.depth, "Height range in texels (after downsampling)")->check(CLI::PositiveNumber)->capture_default_str();
+    o.relief->add_option("--depth", o.depth, "Height range in texels (after downsampling)")->check(positive_number())->capture_default_str();
     o.relief->add_option("--region", o.region, "Write only X,Y,W,H of the (periodic) surface; shadows come from all of it");
 }
 

@@ -72,7 +72,7 @@ TilingCommands::TilingCommands(CLI::App& app) : options_(std::make_unique<Option
     o.normal_map = o.tiling->add_subcommand("normal-map", "A height photo's slopes, tiled and blended: a LEAN-filtered normal map");
     o.normal_map->add_option("height", o.height, "Height photo (luminance is height)")->required();
     o.normal_map->add_option("--strength", o.strength, "Height units per luminance unit, per exemplar pixel")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
     o.normal_map->add_option("-o,--output", o.output, "Output .stex file")->required();
     add_source_options(o.normal_map, o.source);
 
@@ -80,15 +80,15 @@ TilingCommands::TilingCommands(CLI::App& app) : options_(std::make_unique<Option
     o.shade->add_option("texture", o.texture, ".stex file with output normal_map")->required();
     o.shade->add_option("-o,--output", o.output, "Output image")->required();
     o.shade->add_option("--size", o.size, "Output size WxH")->capture_default_str();
-    o.shade->add_option("--scale", o.scale, "Exemplar pixels per output pixel")->check(CLI::PositiveNumber)->capture_default_str();
+    o.shade->add_option("--scale", o.scale, "Exemplar pixels per output pixel")->check(positive_number())->capture_default_str();
     o.shade->add_option("--light", o.light, "Direction towards the light, tangent space (x y z, z > 0)")->expected(3);
     o.shade->add_option("--roughness", o.roughness, "Base slope standard deviation of the facets")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(positive_number())->capture_default_str();
     o.shade->add_option("--albedo", o.albedo, "Lambert albedo")->check(CLI::Range(0.0, 1.0))->capture_default_str();
     o.shade->add_option("--specular", o.specular, "Specular weight")->check(CLI::Range(0.0, 100.0))->capture_default_str();
     o.shade->add_flag("--no-lean", o.no_lean, "Shade the filtered mean normal only (no slope covariance): the aliasing-prone way");
     o.shade->add_flag("--no-filter", o.no_filter, "Point-sample instead of filtering each pixel's footprint");
-    o.shade->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+    o.shade->add_option("--threads", o.threads, "Worker threads (0: all cores)")->check(non_negative_number());
 }
 
 TilingCommands::~TilingCommands() = default;

@@ -60,8 +60,11 @@ std::string read_text(const fs::path& path)
 
 }  // namespace
 
-ProgramResult run_program(const std::vector<std::string>& args, const std::string& dir)
+RunningProgram start_program(const std::vector<std::string>& args, const std::string& dir)
 {
+    RunningProgram program;
+    program.dir = dir;
+    program.name = args.empty() ? std::string() : args[0];
     const fs::path out_path = fs::path(dir) / "stdout.txt", err_path = fs::path(dir) / "stderr.txt";
     std::vector<std::string> strings = args;
     std::vector<char*> argv;
@@ -73,23 +76,33 @@ ProgramResult run_program(const std::vector<std::string>& args, const std::strin
     posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid = 0;
-    const int spawn_error = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    program.spawn_error = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    program.pid = program.spawn_error == 0 ? pid : -1;
+    return program;
+}
 
+ProgramResult finish_program(const RunningProgram& program)
+{
     ProgramResult result;
-    if (spawn_error != 0) {
-        result.err = "cannot run " + args[0] + ": " + std::strerror(spawn_error);
+    if (program.spawn_error != 0) {
+        result.err = "cannot run " + program.name + ": " + std::strerror(program.spawn_error);
         return result;
     }
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    while (waitpid(program.pid, &status, 0) < 0 && errno == EINTR) {
     }
     result.exited = WIFEXITED(status);
     result.code = result.exited ? WEXITSTATUS(status) : -1;
     result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-    result.out = read_text(out_path);
-    result.err = read_text(err_path);
+    result.out = read_text(fs::path(program.dir) / "stdout.txt");
+    result.err = read_text(fs::path(program.dir) / "stderr.txt");
     return result;
+}
+
+ProgramResult run_program(const std::vector<std::string>& args, const std::string& dir)
+{
+    return finish_program(start_program(args, dir));
 }
 
 bool on_path(const std::string& name)

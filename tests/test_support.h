@@ -28,6 +28,16 @@ std::ostream& operator<<(std::ostream& os, const ProgramResult& r);
 /// Runs argv[0] (a path, or a name looked up on PATH) directly — no shell, so no quoting —
 /// with stdout and stderr captured through files in `dir`.
 ProgramResult run_program(const std::vector<std::string>& argv, const std::string& dir);
+/// A program started by start_program(), still running (or finished but not yet waited for).
+struct RunningProgram {
+    int pid = -1;
+    int spawn_error = 0;
+    std::string name, dir;
+};
+/// Starts a program as run_program() does, without waiting (to signal it while it runs).
+RunningProgram start_program(const std::vector<std::string>& argv, const std::string& dir);
+/// Waits for a started program and collects what it printed.
+ProgramResult finish_program(const RunningProgram& program);
 /// Whether an executable called `name` is on PATH (tests of optional tools skip without it).
 bool on_path(const std::string& name);
 bool contains(const std::string& text, const std::string& part);

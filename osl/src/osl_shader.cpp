@@ -1,3 +1,4 @@
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/model.h>
 #include <stochtex/osl/osl_shader.h>
@@ -65,8 +66,10 @@ void write_single_channel_exr(const std::string& path, int width, int height, co
     spec.attribute("compression", "zip");
     spec.attribute("oiio:ColorSpace", "Linear");  // data, not colour: no conversion anywhere
     spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, values) || !output->close())
+    AtomicOutput file(path);  // a failed write keeps the previous tile
+    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, values) || !output->close())
         throw Error(path + ": cannot write the noise tile: " + output->geterror());
+    file.commit();
 }
 
 }  // namespace

@@ -33,8 +33,12 @@ struct AnalysisOptions {
     std::string input_colour_space; ///< recorded in the provenance
 };
 
+/// The largest |pixel value| analyze() accepts (scene-linear): the photo's spectra are float,
+/// and (2^26 pixels × 1e10)² is still within float range.
+constexpr double max_analysis_value = 1e10;
+
 /// Analyses a scene-linear RGB photo (read_image_linear). Throws Error for unusable input
-/// (too small, non-finite values, unknown model).
+/// (too small, non-finite values or values beyond ±max_analysis_value, unknown model).
 TextureDescription analyze(const Image& photo, const AnalysisOptions& options,
                            const ProgressCallback& progress = {});
 

@@ -38,9 +38,16 @@ struct ImageReadOptions {
     std::string input_colour_space;
 };
 
+/// The largest image read_image_linear() reads: 16384 pixels a side and 2^26 pixels (a 8192²
+/// photo), checked from the header before any pixel is read. Reading holds at most
+/// two buffers of 3 floats per pixel (768 MiB each at the limit), and analysis a few planes more.
+constexpr int max_read_side = 16384;
+constexpr long long max_read_pixels = 1ll << 26;
+
 /// Reads any OIIO-readable image as scene-linear RGB (grey is replicated, alpha dropped).
-/// Throws Error naming the file for: missing/unreadable file, truncated data, images smaller
-/// than min_size in either dimension, and non-finite pixel values.
+/// Throws Error naming the file for: missing/unreadable file, a directory, truncated data
+/// (including what the reader only warns about), images smaller than min_size or larger than
+/// max_read_side / max_read_pixels, and non-finite pixel values.
 Image read_image_linear(const std::string& path, const ImageReadOptions& options = {}, int min_size = 16);
 
 /// Writes scene-linear RGB: float EXR (and other float formats) stay linear; 8/16-bit formats

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <string>
 
 namespace stochtex {
 
@@ -98,6 +99,23 @@ protected:
 private:
     TextureDescription description_;
 };
+
+/// How far from the origin a texture may be evaluated, in exemplar pixels (a position in texture
+/// units × pixels_per_unit): 2^45. Every model turns positions into lattice indices through a
+/// double and an int64; within 2^45 pixels a double still resolves 2^-8 of an exemplar pixel
+/// (53 − 45 bits), so spline weights and filters keep their precision, and no index comes near
+/// int64 overflow. Beyond it values would be noise, NaN or undefined behaviour, so the entry
+/// points that take positions from outside (render(), render_region(), periodic textures,
+/// MipImage, bakes, the CLI's options) reject them; eval() and the batch methods expect
+/// positions already inside it. At 512 pixels per unit the bound is ±2^36 ≈ 6.9e10 units.
+constexpr double max_position_pixels = 35184372088832.0;  // 2^45
+
+/// Whether `position` (texture units) is finite and within ±max_position_pixels exemplar pixels.
+bool position_in_range(double position, double pixels_per_unit);
+/// Throws Error("<name>: …") unless `position` (texture units) is finite and within
+/// ±max_position_pixels exemplar pixels at `pixels_per_unit`; the message gives the bound in
+/// texture units.
+void check_position(double position, double pixels_per_unit, const std::string& name);
 
 /// Creates the model named by description.model. Throws Error if the description is invalid.
 std::unique_ptr<Texture> make_texture(const TextureDescription& description);

@@ -7,6 +7,7 @@
 #include "colour/histogram_map.h"
 #include "models/model.h"
 #include "models/wavelet/band_power.h"
+#include "stex/parameter_schema.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +71,14 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
     if (band_count_supported < 1)
         throw Error("image is " + std::to_string(photo.width) + "x" + std::to_string(photo.height) +
                     ", too small to analyse (at least 4x4)");
+    // Spectra are float: a bin's power is up to (pixel count × value)², which for the largest
+    // photo read (2^26 pixels) stays within float range while values stay within 1e10. Beyond
+    // it the fits see infinities and NaNs (a photo × 1e18 crashed the Gabor fit).
+    for (float value : photo.pixels)
+        if (!(std::abs(value) <= max_analysis_value))
+            throw Error((options.source_name.empty() ? std::string("photo") : options.source_name) +
+                        ": pixel values must be finite and within ±1e10 (scene-linear) for analysis, got " +
+                        number_text(value));
     if (options.histogram_knots < 4 || options.histogram_knots > 64)
         throw Error("histogram knots must be in [4, 64], got " + std::to_string(options.histogram_knots));
     if (options.max_bands < 0) throw Error("band count must not be negative");

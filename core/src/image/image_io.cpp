@@ -1,14 +1,21 @@
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <memory>
 
 namespace stochtex {
 
@@ -56,22 +63,35 @@ void convert_colour_space(Image& image, const std::string& from, const std::stri
 
 Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size)
 {
-    if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
+    std::error_code ignored;
+    if (!std::filesystem::exists(path, ignored)) throw Error(path + ": no such file");
+    if (std::filesystem::is_directory(path, ignored)) throw Error(path + ": cannot read image: is a directory");
     auto input = OIIO::ImageInput::open(path);
     if (!input) throw Error(path + ": cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec spec = input->spec();
     if (spec.width < min_size || spec.height < min_size)
         throw Error(path + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                     ", too small (at least " + std::to_string(min_size) + "x" + std::to_string(min_size) + ")");
-    const int channels = spec.nchannels;
+    // The header's size is checked before any pixel is read: a few bytes of header can claim
+    // gigabytes of pixels.
+    if (spec.width > max_read_side || spec.height > max_read_side ||
+        std::int64_t(spec.width) * spec.height > max_read_pixels)
+        throw Error(path + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                    ", too large (at most " + std::to_string(max_read_side) + " pixels a side and " +
+                    std::to_string(max_read_pixels) + " = 2^26 pixels)");
+    // Only the channels used below (colour, or grey): extra channels cost no memory.
+    const int alpha = spec.alpha_channel;
+    const int colour_channels = (alpha >= 0 && alpha < 3) ? alpha : std::min(spec.nchannels, 3);
+    const int channels = std::max(1, std::min(spec.nchannels, 3));
     std::vector<float> data(std::size_t(spec.width) * spec.height * channels);
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
         throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
+    // Some readers succeed with an error recorded: libjpeg decodes a truncated JPEG's missing
+    // rows as flat grey and only warns ("Premature end of JPEG file").
+    if (input->has_error()) throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
     input->close();
 
     Image image(spec.width, spec.height, 3);
-    const int alpha = spec.alpha_channel;
-    const int colour_channels = (alpha >= 0 && alpha < 3) ? alpha : std::min(channels, 3);
     for (std::size_t i = 0; i < image.pixel_count(); ++i)
         for (int c = 0; c < 3; ++c) {
             // Grey (and grey + alpha) is replicated; alpha and extra channels are dropped.
@@ -96,8 +116,21 @@ Image read_image_linear(const std::string& path, const ImageReadOptions& options
 void write_image(const std::string& path, const Image& linear_rgb)
 {
     if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
-    auto output = OIIO::ImageOutput::create(path);
+    // The pixels go to a temporary renamed into place (atomic_write.h). Where the format takes
+    // an I/O proxy they go through a FILE of ours, whose error flag is checked at the end:
+    // OIIO's PNG writer reports no failed write (past a file-size limit it "succeeded" with a
+    // truncated file). Declared before `output`, so that they outlive it.
+    AtomicOutput file(path);
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(nullptr, &std::fclose);
+    std::unique_ptr<OIIO::Filesystem::IOFile> proxy;
+    auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
     if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    if (output->supports("ioproxy")) {
+        stream.reset(std::fopen(file.temporary().c_str(), "wb"));
+        if (!stream) throw Error(path + ": cannot write image: " + std::strerror(errno));
+        proxy = std::make_unique<OIIO::Filesystem::IOFile>(stream.get(), OIIO::Filesystem::IOProxy::Write);
+        if (!output->set_ioproxy(proxy.get())) throw Error(path + ": cannot write image: " + output->geterror());
+    }
     const bool linear = is_float_format(path);
     OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
@@ -110,9 +143,15 @@ void write_image(const std::string& path, const Image& linear_rgb)
         for (float& v : encoded.pixels) v = std::clamp(v, 0.0f, 1.0f);
         source = &encoded;
     }
-    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
+    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
         !output->close())
         throw Error(path + ": cannot write image: " + output->geterror());
+    if (stream) {
+        const bool failed = std::fflush(stream.get()) != 0 || std::ferror(stream.get());
+        const std::string reason = std::strerror(errno);
+        if (std::fclose(stream.release()) != 0 || failed) throw Error(path + ": cannot write image: " + reason);
+    }
+    file.commit();
 }
 
 }  // namespace stochtex

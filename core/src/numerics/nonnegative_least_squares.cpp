@@ -19,6 +19,9 @@ Eigen::VectorXd nonnegative_least_squares(const Eigen::MatrixXd& a, const Eigen:
         std::vector<Eigen::Index> columns;
         for (Eigen::Index j = 0; j < n; ++j)
             if (passive[std::size_t(j)]) columns.push_back(j);
+        // The inner loop can free every column (each step to the boundary zeroes one); the
+        // problem on no columns has the solution 0, and Eigen cannot factor a 0-column matrix.
+        if (columns.empty()) return Eigen::VectorXd::Zero(n).eval();
         Eigen::MatrixXd sub(a.rows(), Eigen::Index(columns.size()));
         for (std::size_t k = 0; k < columns.size(); ++k) sub.col(Eigen::Index(k)) = a.col(columns[k]);
         const Eigen::VectorXd solution = sub.colPivHouseholderQr().solve(b);

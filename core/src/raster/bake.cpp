@@ -1,3 +1,4 @@
+#include <stochtex/atomic_write.h>
 #include <stochtex/bake.h>
 #include <stochtex/error.h>
 #include <stochtex/mip_image.h>
@@ -9,7 +10,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -64,11 +64,9 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
     for (int level = 0; level < image.level_count(); ++level)
         total_texels += double(image.level_width(level)) * image.level_height(level);
 
-    const std::string temporary = path + ".tmp";
+    AtomicOutput file(path);  // removes its temporary on every error below
     auto fail = [&](const std::string& what) {
         output->close();
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
         return Error(path + ": " + what);
     };
     for (int level = 0; level < image.level_count(); ++level) {
@@ -84,7 +82,7 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
         spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
         spec.attribute("stochtex:source", description.provenance.source);
         const auto mode = level == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
-        if (!output->open(temporary, spec, mode)) throw fail("cannot write MIP level " + std::to_string(level) + ": " + output->geterror());
+        if (!output->open(file.temporary(), spec, mode)) throw fail("cannot write MIP level " + std::to_string(level) + ": " + output->geterror());
         std::vector<float> strip(std::size_t(width) * options.tile_size * 3);
         for (int y0 = 0; y0 < height; y0 += options.tile_size) {
             const int rows = std::min(options.tile_size, height - y0);
@@ -96,12 +94,7 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
         }
     }
     if (!output->close()) throw fail("cannot finish the file: " + output->geterror());
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw Error(path + ": cannot move the finished bake into place: " + error.message());
-    }
+    file.commit();
     return {image.level_count(), image.period()[0], image.period()[1]};
 }
 
@@ -162,6 +155,16 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
         throw Error("solid bake: the position scale must be positive");
     const auto texture = make_texture(description);
     const PositionMap map = read_positions(positions_path);
+    // Positions come from a file: each must lie where a texture can be evaluated (texture.h),
+    // checked here because the workers below cannot report an error.
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x)
+            if (map.covered(x, y))
+                for (int c = 0; c < 3; ++c)
+                    if (!position_in_range(map.at(x, y)[c] * units_per_position, description.pixels_per_unit))
+                        check_position(map.at(x, y)[c] * units_per_position, description.pixels_per_unit,
+                                       positions_path + ": texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                           ") position × position scale");
     std::vector<float> out(map.rgba.size(), 0.0f);
     const int workers = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     std::atomic<int> next_row{0}, rows_done{0};
@@ -216,15 +219,10 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     spec.attribute("oiio:ColorSpace", "Linear");
     spec.attribute("compression", "zip");
     spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    const std::string temporary = path + ".tmp";
-    if (!output->open(temporary, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, out.data()) || !output->close()) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
+    AtomicOutput file(path);
+    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, out.data()) || !output->close())
         throw Error(path + ": cannot write the solid map: " + output->geterror());
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) throw Error(path + ": cannot move the finished bake into place: " + error.message());
+    file.commit();
     return {1, 0, 0};
 }
 

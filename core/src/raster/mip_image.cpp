@@ -14,6 +14,9 @@ MipImage::MipImage(const TextureDescription& description, const ImageLayout& lay
     channel_count_ = layout.channels == "Y" ? 1 : layout.channels == "RGBA" ? 4 : 3;
     const double units_per_pixel = layout.scale / description.pixels_per_unit;
     period_ = {layout.width * units_per_pixel, layout.height * units_per_pixel};
+    // Texels lie within one period: bounding it bounds every position a level evaluates.
+    check_position(period_[0], description.pixels_per_unit, source + ": image.width × image.scale (the period in u)");
+    check_position(period_[1], description.pixels_per_unit, source + ": image.height × image.scale (the period in v)");
     texture_ = make_periodic_texture(description, period_);
     for (int w = layout.width, h = layout.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
         level_sizes_.push_back({w, h});

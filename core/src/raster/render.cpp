@@ -11,8 +11,26 @@
 
 namespace stochtex {
 
+namespace {
+
+/// The raster's positions stay where textures can be evaluated (max_position_pixels): its edges
+/// and its depth. Pixel centres lie between the edges, so checking these covers every pixel.
+void check_raster_positions(const Texture& texture, const RenderSettings& settings)
+{
+    const double ppu = texture.description().pixels_per_unit;
+    const double du = settings.units_per_pixel, dv = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : du;
+    check_position(settings.origin_u, ppu, "render: origin_u");
+    check_position(settings.origin_v, ppu, "render: origin_v");
+    check_position(settings.origin_u + settings.width * du, ppu, "render: the right edge, origin_u + width × units_per_pixel");
+    check_position(settings.origin_v + settings.height * dv, ppu, "render: the bottom edge, origin_v + height × units_per_pixel");
+    if (settings.solid) check_position(settings.z, ppu, "render: z");
+}
+
+}  // namespace
+
 void render_region(const Texture& texture, const RenderSettings& settings, int x0, int y0, int w, int h, float* rgb)
 {
+    check_raster_positions(texture, settings);
     RasterRegion region;
     region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
     region.du = settings.units_per_pixel;
@@ -34,6 +52,7 @@ Image render(const Texture& texture, const RenderSettings& settings, const Progr
                     std::to_string(settings.height));
     if (!(settings.units_per_pixel > 0) || !(settings.units_per_pixel_v >= 0))
         throw Error("render: units per pixel must be positive");
+    check_raster_positions(texture, settings);
     // A whole-image render holds 12 bytes per pixel; beyond 2^28 pixels (3 GiB) use tiles.
     if (double(settings.width) * settings.height > double(1 << 28))
         throw Error("render: " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +

@@ -1,3 +1,4 @@
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>
 
@@ -338,28 +339,9 @@ void write_stex(const std::string& path, const TextureDescription& description)
     validate(description, path);
     // Files the model keeps beside the .stex go first, named after it.
     const std::string text = json_fields::format(to_json(model_of(description, path).write_beside(path, description)));
-    // Write beside the target and rename: readers never see a half-written file, and a failed
-    // write leaves an existing file intact.
-    const std::string temporary = path + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path + ": cannot write: " + std::strerror(errno));
-        out << text;
-        out.close();
-        if (!out) {
-            const std::string reason = std::strerror(errno);
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw Error(path + ": cannot write: " + reason);
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw Error(path + ": cannot write: " + error.message());
-    }
+    // Beside the target, then renamed (atomic_write.h): readers never see a half-written file,
+    // and a failed write leaves an existing file intact.
+    write_file_atomically(path, text);
 }
 
 }  // namespace stochtex

@@ -5,6 +5,7 @@
 #include "models/lrp/lrp_parameters.h"
 #include "models/lrp/lrp_spectrum_sampling.h"
 #include "models/lrp/lrp_structure_noise.h"
+#include "stex/parameter_schema.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/lrp_parameters.h>
@@ -31,6 +32,11 @@ void quantise(LrpStructure& structure)
             for (double c : channel) largest = std::max(largest, std::abs(c));
     if (!(largest > 0)) return;
     structure.coefficient_step = std::pow(10.0, std::floor(std::log10(largest * coefficient_resolution)));
+    // A .stex stores steps in [1e-12, 1] (lrp_parameters.cpp): say so here, in the photo's terms,
+    // rather than let the fitted description fail validation with a step the user never chose.
+    if (!(structure.coefficient_step >= 1e-12 && structure.coefficient_step <= 1))
+        throw Error("lrp: the photo's structure coefficients reach " + number_text(largest) +
+                    ", outside what a .stex stores (1e-9 to 1e4); scale the photo's values");
     for (LrpBlock& block : structure.blocks)
         for (auto& channel : block.coefficients)
             for (double& c : channel) c = double(std::llround(c / structure.coefficient_step)) * structure.coefficient_step;

@@ -138,6 +138,10 @@ OctaveFit fit_octaves(const OctaveSpectrum& target, double target_variance, cons
         if (residual < best_residual) best_residual = residual, best_shift = shift, best_power = power;
     }
 
+    // No finite residual at any shift: the spectra hold infinities or NaNs (values beyond float
+    // range, e.g. a photo scaled by 1e18), so nothing can be fitted.
+    if (best_power.size() != octave_count)
+        throw Error("fit_octaves: no shift of the basis gives a finite fit (the spectrum is not finite)");
     OctaveFit fit;
     double fitted_variance = 0;
     for (int k = 0; k < octave_count; ++k) fitted_variance += best_power[k] * basis_variance;

@@ -34,9 +34,10 @@ namespace {
 /// How a periodic texture lays out one band along one axis: `repeats` copies of a tile of
 /// `tile` lattice cells fill the period. The lattice period tile·repeats is the closest we can
 /// get to the band's natural one, `natural` cells (period × ppu · 2^-j).
+/// `repeats` is 64-bit: a period may span up to max_position_pixels cells (2^35 tiles), past int.
 struct BandLattice {
     int tile = 0;  // 0: the band does not fit the period
-    int repeats = 1;
+    std::int64_t repeats = 1;
 };
 
 BandLattice band_lattice(double natural)
@@ -45,9 +46,9 @@ BandLattice band_lattice(double natural)
     // A band needs a few lattice cells to exist at all: its wavelengths are 2–4 cells.
     if (!(natural >= 3)) return {};
     const double cells = std::round(natural);
-    if (std::fmod(cells, shared_tile) == 0) return {shared_tile, int(cells / shared_tile)};
-    const int repeats = int(std::ceil(natural / largest_tile));
-    const int tile = std::max(4, 2 * int(std::lround(natural / (2.0 * repeats))));
+    if (std::fmod(cells, shared_tile) == 0) return {shared_tile, std::int64_t(cells / shared_tile)};
+    const std::int64_t repeats = std::int64_t(std::ceil(natural / largest_tile));
+    const int tile = std::max(4, 2 * int(std::lround(natural / (2.0 * double(repeats)))));
     return {tile, repeats};
 }
 
@@ -81,8 +82,8 @@ WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2
                 present_bands_ = std::min(present_bands_, j);
             } else {
                 tile = &WaveletNoise2D::with_period(x.tile, y.tile);
-                scale[0] = x.tile * x.repeats / (*period)[0];
-                scale[1] = y.tile * y.repeats / (*period)[1];
+                scale[0] = double(x.tile * x.repeats) / (*period)[0];
+                scale[1] = double(y.tile * y.repeats) / (*period)[1];
             }
         }
         const double gain = std::sqrt(shared.variance() / tile->variance());
