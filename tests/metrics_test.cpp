@@ -226,7 +226,9 @@ TEST(CompareImages, FormatReportHasEveryRow) {
     for (const char* row : {"mean ref", "mean test", "stddev ref", "stddev test", "W1", "W1/sigma", "log-PSD dB",
                             "covariance error"})
         EXPECT_NE(text.find(row), std::string::npos) << row << " missing from\n" << text;
-    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 9);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 9 + 4);  // + the four rows below
+    for (const char* row : {"2D log-PSD distance", "gradient orientation W1", "gradient magnitude W1", "false-colour rate"})
+        EXPECT_NE(text.find(row), std::string::npos) << row << " missing from\n" << text;
 }
 
 // ---- What a person sees: orientation, edges, false colour ---------------------------------------
@@ -509,6 +511,38 @@ TEST(FalseColourRate, OtherHalfOfEachSharedColourPhotoIsUnderOnePercent) {
         std::printf("%s: false-colour rate of the right half against the left %.3f %%\n", name, 100 * rate);
         EXPECT_LT(rate, 0.01) << name;
     }
+}
+
+TEST(CompareImages, PerceptualMetricsAreZeroForItselfAndSeeOrientation) {
+    const int n = 256;
+    const auto to_rgb = [n](const std::vector<float>& plane) {
+        Image image(n, n, 3);
+        for (std::size_t i = 0; i < image.pixel_count(); ++i)
+            for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = 0.5f + 0.1f * plane[i];
+        return image;
+    };
+    const Image oriented = to_rgb(gaussian_texture(n, n, 1, oriented_power(30)));
+    const ComparisonReport self = compare_images(oriented, oriented);
+    EXPECT_DOUBLE_EQ(self.polar_log_psd_db, 0.0);
+    EXPECT_DOUBLE_EQ(self.gradient_orientation_degrees, 0.0);
+    EXPECT_DOUBLE_EQ(self.gradient_magnitude_w1, 0.0);
+    EXPECT_LE(self.false_colour_rate, 0.005);
+    EXPECT_EQ(self.spectrum_reference_luma.size, 256);
+    EXPECT_EQ(self.spectrum_test_luma.power, self.spectrum_reference_luma.power);
+
+    const ComparisonReport versus_isotropic = compare_images(oriented, to_rgb(gaussian_texture(n, n, 4, isotropic_power_like_oriented)));
+    EXPECT_GT(versus_isotropic.polar_log_psd_db, 5.0);
+    EXPECT_GT(versus_isotropic.gradient_orientation_degrees, 10.0);
+    const ComparisonReport versus_again = compare_images(oriented, to_rgb(gaussian_texture(n, n, 2, oriented_power(30))));
+    EXPECT_LT(versus_again.polar_log_psd_db, 1.5);
+    EXPECT_LT(versus_again.gradient_orientation_degrees, 3.0);
+    for (int c = 0; c < 3; ++c) EXPECT_LT(versus_isotropic.log_psd_db[c], versus_again.log_psd_db[c] + 0.5);
+}
+
+TEST(CompareImages, PerceptualMetricsAreNotAvailableOnTinyImages) {
+    const ComparisonReport tiny = compare_images(random_rgb(8, 8, 1), random_rgb(8, 8, 2));
+    EXPECT_TRUE(std::isnan(tiny.polar_log_psd_db));
+    EXPECT_NE(format_report(tiny).find("n/a"), std::string::npos);
 }
 
 }  // namespace

@@ -119,6 +119,13 @@ struct ComparisonReport {
     std::array<double, 3> w1_relative{};    ///< w1 / stddev_reference
     std::array<double, 3> log_psd_db{};     ///< per channel
     RadialPsd psd_reference_luma, psd_test_luma;  ///< for plots
+    // What the radial and per-value metrics cannot see, on luma (0.2126 R + 0.7152 G + 0.0722 B):
+    double polar_log_psd_db = 0;             ///< polar_log_psd_distance_db: orientation of the spectrum
+    double gradient_orientation_degrees = 0; ///< circular W1 of the |∇|-weighted orientation histograms
+    double gradient_magnitude_w1 = 0;        ///< W1 of |∇|/σ, relative to the reference's mean |∇|/σ
+    double false_colour_rate = 0;            ///< false_colour_rate(reference, test), a fraction
+    /// centred_spectrum of luma for plots, side ≤ 256 (min of it and the images' sides).
+    CentredSpectrum spectrum_reference_luma, spectrum_test_luma;
 };
 ComparisonReport compare_images(const Image& reference, const Image& test);
 std::string format_report(const ComparisonReport& report);

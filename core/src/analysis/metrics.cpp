@@ -504,8 +504,35 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
             throw Error(std::string("compare_images: channel ") + kChannelNames[c] + ": " + e.what());
         }
     }
-    report.psd_reference_luma = radial_psd(luma_plane(reference), reference.width, reference.height);
-    report.psd_test_luma = radial_psd(luma_plane(test), test.width, test.height);
+    // One windowed spectrum of each luma serves the radial, the polar and the plotted spectrum.
+    const std::vector<float> reference_luma = luma_plane(reference), test_luma = luma_plane(test);
+    const WindowedSpectrum reference_spectrum =
+        windowed_spectrum(reference_luma, reference.width, reference.height, "compare_images: reference");
+    const WindowedSpectrum test_spectrum = windowed_spectrum(test_luma, test.width, test.height, "compare_images: test");
+    constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
+    report.psd_reference_luma = radial_psd_of(reference_spectrum, kBinsPerOctave);
+    report.psd_test_luma = radial_psd_of(test_spectrum, kBinsPerOctave);
+    report.polar_log_psd_db = polar_distance_or_nan(polar_psd_of(reference_spectrum, kBinsPerOctave, kAngleBins),
+                                                    polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
+    const int plot_size = std::min({kPlotSize, reference.width, reference.height, test.width, test.height});
+    report.spectrum_reference_luma = centred_spectrum_of(reference_spectrum, plot_size);
+    report.spectrum_test_luma = centred_spectrum_of(test_spectrum, plot_size);
+
+    if (std::min({reference.width, reference.height, test.width, test.height}) >= 3) {
+        const GradientStatistics reference_gradients =
+            gradient_statistics(reference_luma, reference.width, reference.height);
+        const GradientStatistics test_gradients = gradient_statistics(test_luma, test.width, test.height);
+        report.gradient_orientation_degrees =
+            circular_wasserstein1_degrees(reference_gradients.orientation, test_gradients.orientation);
+        double mean_magnitude = 0;
+        for (float m : reference_gradients.magnitude_over_sigma) mean_magnitude += m;
+        mean_magnitude /= double(reference_gradients.magnitude_over_sigma.size());
+        report.gradient_magnitude_w1 =
+            wasserstein1(reference_gradients.magnitude_over_sigma, test_gradients.magnitude_over_sigma) / mean_magnitude;
+    } else {
+        report.gradient_orientation_degrees = report.gradient_magnitude_w1 = std::numeric_limits<double>::quiet_NaN();
+    }
+    report.false_colour_rate = false_colour_rate(reference, test);
     return report;
 }
 
@@ -528,6 +555,20 @@ std::string format_report(const ComparisonReport& report) {
     add_row("log-PSD dB", report.log_psd_db);
     std::snprintf(line, sizeof line, "colour covariance error (relative Frobenius): %.5g\n", report.covariance_error);
     text += line;
+    // NaN (images too small for the measure) prints as "n/a", not as a number to trust.
+    const auto value = [](double v, const char* format) {
+        char buffer[32];
+        if (std::isnan(v)) return std::string("n/a");
+        std::snprintf(buffer, sizeof buffer, format, v);
+        return std::string(buffer);
+    };
+    text += "2D log-PSD distance (luma, log-polar sectors): " + value(report.polar_log_psd_db, "%.3g") + " dB\n";
+    text += "gradient orientation W1 (luma, |grad|-weighted, mod 180): " +
+            value(report.gradient_orientation_degrees, "%.3g") + " deg\n";
+    text += "gradient magnitude W1 (|grad|/sigma, relative to the reference mean): " +
+            value(report.gradient_magnitude_w1, "%.3g") + "\n";
+    text += "false-colour rate (test chroma outside the reference's 99.5% a*b* region): " +
+            value(100.0 * report.false_colour_rate, "%.3g") + " %\n";
     return text;
 }
 
