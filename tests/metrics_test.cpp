@@ -335,14 +335,20 @@ TEST(PolarLogPsdDistance, SeesOrientationTheRadialSpectrumCannot) {
     EXPECT_LT(polar_sizes, 1.5);
     EXPECT_GT(polar, 5.0);
     EXPECT_GT(polar, 4 * polar_same);
+    // The difference is orientation, not level: the angular part carries nearly all of it.
+    const double angular = polar_log_psd_angular_db(polar_psd(oriented, n, n), polar_psd(isotropic, n, n));
+    std::printf("2D angular part: oriented vs isotropic %.2f dB\n", angular);
+    EXPECT_GT(angular, 0.8 * polar);
+    EXPECT_LE(angular, polar);
     EXPECT_DOUBLE_EQ(polar_distance(oriented, n, n, oriented, n, n), 0.0);
 }
 
-TEST(PolarLogPsdDistance, TwiceTheAmplitudeIsTenLog10FourAndGridsMustMatch) {
+TEST(PolarLogPsdDistance, TwiceTheAmplitudeIsTenLog10FourWithNoAngularPartAndGridsMustMatch) {
     std::vector<float> plane = white_noise(128, 128, 1.0, 8);
     const PolarPsd psd = polar_psd(plane, 128, 128);
     for (float& v : plane) v *= 2.0f;
     EXPECT_NEAR(polar_log_psd_distance_db(polar_psd(plane, 128, 128), psd), 10 * std::log10(4.0), 1e-4);
+    EXPECT_NEAR(polar_log_psd_angular_db(polar_psd(plane, 128, 128), psd), 0.0, 1e-4);  // a level error only
     EXPECT_THROW(polar_log_psd_distance_db(psd, polar_psd(plane, 128, 128, 4, 8)), Error);
     EXPECT_THROW(polar_log_psd_distance_db(psd, psd, 1 << 20), Error);  // no cell that full
     EXPECT_THROW(polar_psd(plane, 128, 128, 4, 0), Error);
@@ -532,6 +538,7 @@ TEST(CompareImages, PerceptualMetricsAreZeroForItselfAndSeeOrientation) {
 
     const ComparisonReport versus_isotropic = compare_images(oriented, to_rgb(gaussian_texture(n, n, 4, isotropic_power_like_oriented)));
     EXPECT_GT(versus_isotropic.polar_log_psd_db, 5.0);
+    EXPECT_GT(versus_isotropic.polar_log_psd_angular_db, 4.0);
     EXPECT_GT(versus_isotropic.gradient_orientation_degrees, 10.0);
     const ComparisonReport versus_again = compare_images(oriented, to_rgb(gaussian_texture(n, n, 2, oriented_power(30))));
     EXPECT_LT(versus_again.polar_log_psd_db, 1.5);
@@ -542,6 +549,7 @@ TEST(CompareImages, PerceptualMetricsAreZeroForItselfAndSeeOrientation) {
 TEST(CompareImages, PerceptualMetricsAreNotAvailableOnTinyImages) {
     const ComparisonReport tiny = compare_images(random_rgb(8, 8, 1), random_rgb(8, 8, 2));
     EXPECT_TRUE(std::isnan(tiny.polar_log_psd_db));
+    EXPECT_TRUE(std::isnan(tiny.polar_log_psd_angular_db));
     EXPECT_NE(format_report(tiny).find("n/a"), std::string::npos);
 }
 

@@ -59,6 +59,11 @@ PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int b
 /// floor against a float render's nothing is a difference no one sees). Throws if no radius bin
 /// qualifies (images too small, or different grids).
 double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
+/// The orientation part of polar_log_psd_distance_db: the same sectors and weights, each
+/// sector's power divided by its radius bin's mean power (its own radial PSD there) before the
+/// dB difference, so a level error shared by all directions (a missing octave, a gain) drops
+/// out and only the angular profiles are compared. 0 in bins where only d = 1 qualifies.
+double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
 
 /// One channel's periodogram density (radial_psd's estimator) on a centred size×size grid for
 /// display: cell (i, j) holds the mean over the FFT samples with frequency
@@ -120,7 +125,8 @@ struct ComparisonReport {
     std::array<double, 3> log_psd_db{};     ///< per channel
     RadialPsd psd_reference_luma, psd_test_luma;  ///< for plots
     // What the radial and per-value metrics cannot see, on luma (0.2126 R + 0.7152 G + 0.0722 B):
-    double polar_log_psd_db = 0;             ///< polar_log_psd_distance_db: orientation of the spectrum
+    double polar_log_psd_db = 0;             ///< polar_log_psd_distance_db: the 2D spectrum, orientation included
+    double polar_log_psd_angular_db = 0;     ///< polar_log_psd_angular_db: its orientation part
     double gradient_orientation_degrees = 0; ///< circular W1 of the |∇|-weighted orientation histograms
     double gradient_magnitude_w1 = 0;        ///< W1 of |∇|/σ, relative to the reference's mean |∇|/σ
     double false_colour_rate = 0;            ///< false_colour_rate(reference, test), a fraction

@@ -212,9 +212,13 @@ CentredSpectrum centred_spectrum_of(const WindowedSpectrum& spectrum, int size) 
     return centred;
 }
 
-/// polar_log_psd_distance_db, or NaN where no radius bin qualifies (compare_images reports that
-/// as "n/a" rather than failing on small images the other metrics handle).
-double polar_distance_or_nan(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+/// polar_log_psd_distance_db and polar_log_psd_angular_db, or NaNs where no radius bin
+/// qualifies (compare_images reports that as "n/a" rather than failing on small images the
+/// other metrics handle).
+struct PolarDistances {
+    double total_db, angular_db;
+};
+PolarDistances polar_distances_or_nan(const PolarPsd& a, const PolarPsd& b, int min_samples) {
     if (a.bins_per_octave != b.bins_per_octave || a.angle_bins != b.angle_bins)
         throw Error("polar_log_psd_distance_db: the spectra use different grids (" + std::to_string(a.bins_per_octave) +
                     " vs " + std::to_string(b.bins_per_octave) + " bins per octave, " + std::to_string(a.angle_bins) +
@@ -222,7 +226,9 @@ double polar_distance_or_nan(const PolarPsd& a, const PolarPsd& b, int min_sampl
     const int angle_bins = a.angle_bins;
     struct Sector {
         double power_a, power_b, weight;
+        std::size_t radius;  ///< index of its radius bin among the kept ones
     };
+    std::size_t kept_radii = 0;
     std::vector<Sector> sectors;
     std::size_t i = 0, j = 0;
     while (i < a.frequency.size() && j < b.frequency.size()) {
@@ -247,27 +253,40 @@ double polar_distance_or_nan(const PolarPsd& a, const PolarPsd& b, int min_sampl
                     count_b += b.samples[ib];
                 }
                 enough = count_a >= min_samples && count_b >= min_samples;
-                candidate.push_back({sum_a / std::max(count_a, 1.0), sum_b / std::max(count_b, 1.0), 1.0 / d});
+                candidate.push_back({sum_a / std::max(count_a, 1.0), sum_b / std::max(count_b, 1.0), 1.0 / d, kept_radii});
             }
             if (enough) {
                 sectors.insert(sectors.end(), candidate.begin(), candidate.end());
+                ++kept_radii;
                 break;
             }
         }
         ++i, ++j;
     }
-    if (sectors.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (sectors.empty()) return {nan, nan};
     double strongest = 0;
     for (const Sector& s : sectors) strongest = std::max({strongest, s.power_a, s.power_b});
-    if (strongest <= 0) return std::numeric_limits<double>::quiet_NaN();  // both constant
+    if (strongest <= 0) return {nan, nan};  // both constant
     const double floor = strongest * 1e-6;  // 60 dB
-    double sum_squares = 0, total_weight = 0;
+    // The angular part compares each spectrum's sectors relative to its own mean power over the
+    // radius bin (its radial PSD there), so a level error common to all directions drops out.
+    // (Subtracting the mean dB difference instead would not: for a spectrum peaked in one
+    // direction the mean of the logs sits far under the log of the mean, Jensen's inequality.)
+    std::vector<double> radius_mean_a(kept_radii, 0.0), radius_mean_b(kept_radii, 0.0);
     for (const Sector& s : sectors) {
-        const double db = 10.0 * std::log10(std::max(s.power_a, floor) / std::max(s.power_b, floor));
-        sum_squares += s.weight * db * db;
-        total_weight += s.weight;
+        radius_mean_a[s.radius] += s.weight * std::max(s.power_a, floor);
+        radius_mean_b[s.radius] += s.weight * std::max(s.power_b, floor);
     }
-    return std::sqrt(sum_squares / total_weight);
+    double sum_squares = 0, residual_squares = 0;
+    for (const Sector& s : sectors) {
+        const double pa = std::max(s.power_a, floor), pb = std::max(s.power_b, floor);
+        const double db = 10.0 * std::log10(pa / pb);
+        const double residual = db - 10.0 * std::log10(radius_mean_a[s.radius] / radius_mean_b[s.radius]);
+        sum_squares += s.weight * db * db;
+        residual_squares += s.weight * residual * residual;
+    }
+    return {std::sqrt(sum_squares / kept_radii), std::sqrt(residual_squares / kept_radii)};
 }
 
 }  // namespace
@@ -283,12 +302,22 @@ PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int b
     return polar_psd_of(windowed_spectrum(plane, width, height, "polar_psd"), bins_per_octave, angle_bins);
 }
 
-double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples) {
-    const double distance = polar_distance_or_nan(a, b, min_samples);
-    if (std::isnan(distance))
+namespace {
+PolarDistances polar_distances(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    const PolarDistances distances = polar_distances_or_nan(a, b, min_samples);
+    if (std::isnan(distances.total_db))
         throw Error("polar_log_psd_distance_db: no radius bin where both spectra hold " + std::to_string(min_samples) +
                     " samples with power (images too small, constant, or of different bins?)");
-    return distance;
+    return distances;
+}
+}  // namespace
+
+double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    return polar_distances(a, b, min_samples).total_db;
+}
+
+double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    return polar_distances(a, b, min_samples).angular_db;
 }
 
 CentredSpectrum centred_spectrum(const std::vector<float>& plane, int width, int height, int size) {
@@ -512,8 +541,10 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
     constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
     report.psd_reference_luma = radial_psd_of(reference_spectrum, kBinsPerOctave);
     report.psd_test_luma = radial_psd_of(test_spectrum, kBinsPerOctave);
-    report.polar_log_psd_db = polar_distance_or_nan(polar_psd_of(reference_spectrum, kBinsPerOctave, kAngleBins),
-                                                    polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
+    const PolarDistances polar = polar_distances_or_nan(polar_psd_of(reference_spectrum, kBinsPerOctave, kAngleBins),
+                                                        polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
+    report.polar_log_psd_db = polar.total_db;
+    report.polar_log_psd_angular_db = polar.angular_db;
     const int plot_size = std::min({kPlotSize, reference.width, reference.height, test.width, test.height});
     report.spectrum_reference_luma = centred_spectrum_of(reference_spectrum, plot_size);
     report.spectrum_test_luma = centred_spectrum_of(test_spectrum, plot_size);
@@ -562,7 +593,8 @@ std::string format_report(const ComparisonReport& report) {
         std::snprintf(buffer, sizeof buffer, format, v);
         return std::string(buffer);
     };
-    text += "2D log-PSD distance (luma, log-polar sectors): " + value(report.polar_log_psd_db, "%.3g") + " dB\n";
+    text += "2D log-PSD distance (luma, log-polar sectors): " + value(report.polar_log_psd_db, "%.3g") +
+            " dB, of which angular (orientation) " + value(report.polar_log_psd_angular_db, "%.3g") + " dB\n";
     text += "gradient orientation W1 (luma, |grad|-weighted, mod 180): " +
             value(report.gradient_orientation_degrees, "%.3g") + " deg\n";
     text += "gradient magnitude W1 (|grad|/sigma, relative to the reference mean): " +
