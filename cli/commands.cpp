@@ -15,6 +15,7 @@
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -248,15 +249,32 @@ int CompareCommand::run() const
         {{centres, luma_histogram(photo_image, lo, hi, bins), photo_colour},
          {centres, luma_histogram(synthesis, lo, hi, bins), synthesis_colour}},
         false, false);
-    Image figure(2 * tile, tile + tile / 2, 3);
+    // The two luma spectra in dB on one colour scale: from the strongest cell of either down
+    // 60 dB (polar_log_psd_distance_db's floor), so equal colours mean equal power.
+    const auto to_db = [](const CentredSpectrum& spectrum) {
+        std::vector<double> db(spectrum.power.size());
+        for (std::size_t i = 0; i < db.size(); ++i)
+            db[i] = spectrum.power[i] > 0 ? 10.0 * std::log10(spectrum.power[i]) : -1e300;
+        return db;
+    };
+    const std::vector<double> photo_db = to_db(report.spectrum_reference_luma),
+                              synthesis_db = to_db(report.spectrum_test_luma);
+    const double db_hi = std::max(*std::max_element(photo_db.begin(), photo_db.end()),
+                                  *std::max_element(synthesis_db.begin(), synthesis_db.end()));
+    const double db_lo = db_hi - 60.0;
+    const int grid = report.spectrum_reference_luma.size;
+    Image figure(2 * tile, tile + tile / 2 + tile, 3);
     paste(figure, crop(photo_image), 0, 0);
     paste(figure, crop(synthesis), tile, 0);
     paste(figure, psd_panel, 0, tile);
     paste(figure, histogram_panel, tile, tile);
+    paste(figure, heat_map_panel(photo_db, grid, tile, db_lo, db_hi), 0, tile + tile / 2);
+    paste(figure, heat_map_panel(synthesis_db, grid, tile, db_lo, db_hi), tile, tile + tile / 2);
     write_image(output, figure);
-    std::printf("wrote %s (left: photo, right: synthesis; below: radial PSD (log-log) and luma histogram; blue = photo, "
-                "red = synthesis)\n",
-                output.c_str());
+    std::printf("wrote %s (left: photo, right: synthesis; below: radial PSD (log-log) and luma histogram, blue = photo, "
+                "red = synthesis; bottom: luma power spectra, centred, fx right and fy up to +-0.5 cycles/px, "
+                "log power %.1f to %.1f dB, dark to pale)\n",
+                output.c_str(), db_lo, db_hi);
     return 0;
 }
 

@@ -58,6 +58,32 @@ Image plot_panel(int width, int height, const std::vector<Curve>& curves, bool l
     return panel;
 }
 
+Image heat_map_panel(const std::vector<double>& values, int grid, int size, double lo, double hi)
+{
+    // sRGB control points of matplotlib's "inferno" (perceptually uniform, legible in grey too),
+    // decoded to linear: the figure is written through the sRGB encoding like every image.
+    static const std::array<std::array<float, 3>, 5> stops = [] {
+        const int srgb[5][3] = {{0, 0, 4}, {87, 16, 110}, {188, 55, 84}, {249, 142, 9}, {252, 255, 164}};
+        std::array<std::array<float, 3>, 5> linear{};
+        for (int s = 0; s < 5; ++s)
+            for (int c = 0; c < 3; ++c) {
+                const double v = srgb[s][c] / 255.0;
+                linear[s][c] = float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+            }
+        return linear;
+    }();
+    Image panel(size, size, 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const double v = values[std::size_t(y * grid / size) * grid + std::size_t(x * grid / size)];
+            const double t = std::clamp(hi > lo ? (v - lo) / (hi - lo) : 0.0, 0.0, 1.0) * (stops.size() - 1);
+            const std::size_t s = std::min(std::size_t(t), stops.size() - 2);
+            const double u = t - double(s);
+            for (int c = 0; c < 3; ++c) panel.at(x, y, c) = float(stops[s][c] * (1 - u) + stops[s + 1][c] * u);
+        }
+    return panel;
+}
+
 void paste(Image& target, const Image& source, int x, int y)
 {
     for (int j = 0; j < source.height; ++j)

@@ -17,6 +17,10 @@ struct Curve {
 /// bounding box (log10 of x and/or y when requested).
 stochtex::Image plot_panel(int width, int height, const std::vector<Curve>& curves, bool log_x, bool log_y);
 
+/// A grid×grid array of values (rows top to bottom) as a size×size false-colour panel (an
+/// inferno-like map: dark for lo and below, pale yellow for hi and above), nearest-neighbour scaled.
+stochtex::Image heat_map_panel(const std::vector<double>& values, int grid, int size, double lo, double hi);
+
 /// Copies `source` into `target` with its top-left corner at (x, y) (clipped).
 void paste(stochtex::Image& target, const stochtex::Image& source, int x, int y);
 

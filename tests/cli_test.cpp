@@ -410,6 +410,11 @@ TEST_F(Cli, AnalyzeRenderInfoCompareMorph)
     expect_success(compare);
     ASSERT_TRUE(fs::exists(figure));
     EXPECT_GT(read_float_image(figure).width, 0);
+    for (const char* row : {"2D log-PSD distance", "gradient orientation W1", "false-colour rate"})
+        EXPECT_TRUE(contains(compare.out, row)) << row << " missing:\n" << compare;
+    // photo | synthesis, then the plots at half height, then the two spectra: 2 tiles by 2.5.
+    const FloatImage figure_image = read_float_image(figure);
+    EXPECT_EQ(figure_image.height, figure_image.width / 2 + figure_image.width / 4 + figure_image.width / 2);
 
     // morph with itself
     const fs::path morphed = dir / "morphed.stex";

@@ -34,6 +34,79 @@ struct SpectralOrientation {
 };
 SpectralOrientation spectral_orientation(const std::vector<float>& plane, int width, int height);
 
+/// The same periodogram density as radial_psd (mean removed, Hann window, power-compensated,
+/// density per unit frequency area, so sizes compare) on a log-polar grid: radial_psd's
+/// log-spaced radius bins crossed with angle_bins cells of the frequency angle θ mod 180°
+/// (θ from the x axis towards y up; cell k centred on k·180°/angle_bins; a real image's
+/// spectrum is point-symmetric, so θ and θ + 180° are the same samples).
+struct PolarPsd {
+    int bins_per_octave = 4, angle_bins = 12;
+    std::vector<double> frequency;  ///< radius bin centres, ascending, as radial_psd's
+    /// frequency.size()·angle_bins, radius-major: the mean density and the number of FFT samples
+    /// (mirrors counted) of each cell; 0 and 0 where no sample falls.
+    std::vector<double> power, samples;
+};
+PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave = 4,
+                   int angle_bins = 12);
+
+/// The 2D (oriented) log-PSD distance, in dB. Estimator: in each radius bin both spectra have,
+/// the finest grouping of the angle cells into d equal sectors (d a divisor of angle_bins, down
+/// to d = 1: the radial PSD) in which every sector of both spectra holds ≥ min_samples FFT
+/// samples, so periodogram noise (±4.3 dB per sample) stays ≲ 4.3/√(min_samples/2) dB per
+/// sector; then RMS of 10·log10(Pa/Pb) over the sectors, each weighted 1/d so every radius bin
+/// (a fixed share of an octave) weighs the same, as in log_psd_distance_db. Powers are first
+/// raised to a floor 60 dB under the strongest sector of either (an 8-bit photo's quantisation
+/// floor against a float render's nothing is a difference no one sees). Throws if no radius bin
+/// qualifies (images too small, or different grids).
+double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
+/// The orientation part of polar_log_psd_distance_db: the same sectors and weights, each
+/// sector's power divided by its radius bin's mean power (its own radial PSD there) before the
+/// dB difference, so a level error shared by all directions (a missing octave, a gain) drops
+/// out and only the angular profiles are compared. 0 in bins where only d = 1 qualifies.
+double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
+
+/// One channel's periodogram density (radial_psd's estimator) on a centred size×size grid for
+/// display: cell (i, j) holds the mean over the FFT samples with frequency
+/// (fx, fy), i = ⌊(fx + ½)·size⌋, j = ⌊(½ − fy)·size⌋ (fy towards y up, so the picture turns
+/// as the image does), clamped to the grid; 0 where no sample falls (size > width or height).
+/// The DC sample is left out.
+struct CentredSpectrum {
+    int size = 0;
+    std::vector<double> power;  ///< size·size, rows top to bottom
+};
+CentredSpectrum centred_spectrum(const std::vector<float>& plane, int width, int height, int size);
+
+/// Gradients of one plane (central differences on interior pixels, so photos need not tile):
+/// orientation φ = atan2(gy, gx) mod 180° with gy towards y up, magnitude |∇|. Histograms of these
+/// see edge sharpness (blur lowers |∇| relative to σ) and anisotropy (where the edges point).
+struct GradientStatistics {
+    /// |∇|-weighted orientation histogram: orientation_bins bins centred on k·180°/orientation_bins,
+    /// each φ shared linearly between the two nearest centres (no aliasing of 8-bit gradients'
+    /// preferred angles into one bin); sums to 1.
+    std::vector<double> orientation;
+    /// |∇| / σ of every interior pixel, σ the plane's standard deviation: contrast-free sharpness.
+    std::vector<float> magnitude_over_sigma;
+};
+GradientStatistics gradient_statistics(const std::vector<float>& plane, int width, int height,
+                                       int orientation_bins = 36);
+
+/// 1-Wasserstein distance on the circle of circumference 180° between two orientation
+/// histograms of the same bin count, in degrees: the mean angle the gradient energy of one must
+/// turn to become the other (0 … 45° for mass moved by at most 90°). Werman et al.: with the
+/// CDF differences d_k, min over c of Σ|d_k − c|·Δ, c the (weighted) median of d_k.
+double circular_wasserstein1_degrees(const std::vector<double>& a, const std::vector<double>& b);
+
+/// Chroma of linear Rec.709 RGB as CIELAB a*, b* (D65 white): perceptually near-uniform, and a
+/// dark pixel's chroma shrinks with its lightness as a person sees it.
+std::array<double, 2> cielab_chroma(float r, float g, float b);
+
+/// The fraction of test pixels whose chroma lies outside the region holding 99.5 % of the
+/// reference's chroma: on a grid of a*b* bins of side 2.3 (one just-noticeable difference,
+/// ΔE*ab ≈ 2.3) over [−128, 128]², the densest reference bins holding 99.5 % of its pixels,
+/// dilated by one bin (8-neighbours). A photo's own other crop scores ≈ 0; flecks of a hue the
+/// photo never has score their area.
+double false_colour_rate(const Image& reference, const Image& test);
+
 /// 1-Wasserstein distance between the empirical distributions of two samples (any sizes).
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b);
 
@@ -51,6 +124,14 @@ struct ComparisonReport {
     std::array<double, 3> w1_relative{};    ///< w1 / stddev_reference
     std::array<double, 3> log_psd_db{};     ///< per channel
     RadialPsd psd_reference_luma, psd_test_luma;  ///< for plots
+    // What the radial and per-value metrics cannot see, on luma (0.2126 R + 0.7152 G + 0.0722 B):
+    double polar_log_psd_db = 0;             ///< polar_log_psd_distance_db: the 2D spectrum, orientation included
+    double polar_log_psd_angular_db = 0;     ///< polar_log_psd_angular_db: its orientation part
+    double gradient_orientation_degrees = 0; ///< circular W1 of the |∇|-weighted orientation histograms
+    double gradient_magnitude_w1 = 0;        ///< W1 of |∇|/σ, relative to the reference's mean |∇|/σ
+    double false_colour_rate = 0;            ///< false_colour_rate(reference, test), a fraction
+    /// centred_spectrum of luma for plots, side ≤ 256 (min of it and the images' sides).
+    CentredSpectrum spectrum_reference_luma, spectrum_test_luma;
 };
 ComparisonReport compare_images(const Image& reference, const Image& test);
 std::string format_report(const ComparisonReport& report);

@@ -76,19 +76,24 @@ void require_rgb(const Image& image, const char* role) {
 
 }  // namespace
 
+namespace {
+
 // Normalisation. With x' = (x − mean)·w (w the separable Hann window) and F its unnormalised
 // DFT, the periodogram P_k = |F_k|² / (W·H)² sums over all bins to mean(x'²) (Parseval), which
 // is the variance times mean(w²); dividing by mean(w²) makes Σ_k P_k the channel variance.
 // Each FFT bin covers a frequency area of 1/(W·H) cycles²/pixel², so the reported power is the
 // density S = P_k·W·H = |F_k|² / (W·H·mean(w²)), averaged over the bin's FFT samples: white noise
 // of variance σ² gives S = σ² in every bin at any image size, and Σ_k S_k / (W·H) = variance.
-RadialPsd radial_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave) {
-    if (width < 2 || height < 2 || plane.size() != std::size_t(width) * height)
-        throw Error("radial_psd: plane of " + std::to_string(plane.size()) + " values does not match a " +
-                    std::to_string(width) + "x" + std::to_string(height) + " image of at least 2x2");
-    if (bins_per_octave < 1)
-        throw Error("radial_psd: bins_per_octave must be at least 1, got " + std::to_string(bins_per_octave));
+struct WindowedSpectrum {
+    int width = 0, height = 0;
+    std::vector<std::complex<float>> half;  ///< real_fft_2d layout
+    double density_scale = 0;               ///< S = |F|²·density_scale
+};
 
+WindowedSpectrum windowed_spectrum(const std::vector<float>& plane, int width, int height, const char* caller) {
+    if (width < 2 || height < 2 || plane.size() != std::size_t(width) * height)
+        throw Error(std::string(caller) + ": plane of " + std::to_string(plane.size()) + " values does not match a " +
+                    std::to_string(width) + "x" + std::to_string(height) + " image of at least 2x2");
     double mean = 0;
     for (float v : plane) mean += v;
     mean /= double(plane.size());
@@ -103,34 +108,221 @@ RadialPsd radial_psd(const std::vector<float>& plane, int width, int height, int
             const std::size_t i = std::size_t(y) * width + x;
             windowed[i] = float((plane[i] - mean) * window_x[x] * window_y[y]);
         }
-    const std::vector<std::complex<float>> spectrum = real_fft_2d(windowed, width, height);
+    WindowedSpectrum spectrum;
+    spectrum.width = width;
+    spectrum.height = height;
+    spectrum.half = real_fft_2d(windowed, width, height);
+    spectrum.density_scale = 1.0 / (double(width) * height * window_x_mean_square * window_y_mean_square);
+    return spectrum;
+}
 
-    const int lowest_bin = radial_bin(1.0 / std::min(width, height), bins_per_octave);
-    std::vector<double> power_sum(lowest_bin + 1, 0.0), sample_count(lowest_bin + 1, 0.0);
-    const int spectrum_width = width / 2 + 1;
+/// Calls visit(fx, fy, multiplicity, |F|²) for every sample of the half spectrum but DC; fx ≥ 0
+/// and fy (towards row index, i.e. y down) in cycles per pixel. The r2c half-spectrum omits the
+/// mirror (−fx, −fy) of every column except kx = 0 and kx = W/2, which are their own mirrors;
+/// the mirror has the same |F| and radius, and its angle differs by 180°: multiplicity 2 stands for it.
+template <class Visit>
+void for_each_frequency(const WindowedSpectrum& spectrum, Visit&& visit) {
+    const int width = spectrum.width, height = spectrum.height, spectrum_width = width / 2 + 1;
     for (int ky = 0; ky < height; ++ky) {
         const double fy = double(ky <= height / 2 ? ky : ky - height) / height;
         for (int kx = 0; kx < spectrum_width; ++kx) {
-            const double frequency = std::hypot(double(kx) / width, fy);
-            if (frequency == 0 || frequency > kNyquist) continue;  // DC; corners beyond Nyquist
-            const int bin = radial_bin(frequency, bins_per_octave);
-            if (bin > lowest_bin) continue;  // below 1/min(w,h) along the longer side
-            // The r2c half-spectrum omits the mirror (−kx, −ky) of every column except kx = 0 and
-            // kx = W/2, which are their own mirrors; the mirror has the same |F| and radius.
+            if (kx == 0 && ky == 0) continue;  // DC: the mean, removed
             const double multiplicity = (kx == 0 || 2 * kx == width) ? 1.0 : 2.0;
-            power_sum[bin] += multiplicity * std::norm(spectrum[std::size_t(ky) * spectrum_width + kx]);
-            sample_count[bin] += multiplicity;
+            visit(double(kx) / width, fy, multiplicity, std::norm(spectrum.half[std::size_t(ky) * spectrum_width + kx]));
         }
     }
+}
 
-    const double density_scale = 1.0 / (double(width) * height * window_x_mean_square * window_y_mean_square);
+void require_bins_per_octave(int bins_per_octave, const char* caller) {
+    if (bins_per_octave < 1)
+        throw Error(std::string(caller) + ": bins_per_octave must be at least 1, got " + std::to_string(bins_per_octave));
+}
+
+RadialPsd radial_psd_of(const WindowedSpectrum& spectrum, int bins_per_octave) {
+    const int lowest_bin = radial_bin(1.0 / std::min(spectrum.width, spectrum.height), bins_per_octave);
+    std::vector<double> power_sum(lowest_bin + 1, 0.0), sample_count(lowest_bin + 1, 0.0);
+    for_each_frequency(spectrum, [&](double fx, double fy, double multiplicity, double power) {
+        const double frequency = std::hypot(fx, fy);
+        if (frequency > kNyquist) return;  // corners beyond Nyquist
+        const int bin = radial_bin(frequency, bins_per_octave);
+        if (bin > lowest_bin) return;  // below 1/min(w,h) along the longer side
+        power_sum[bin] += multiplicity * power;
+        sample_count[bin] += multiplicity;
+    });
     RadialPsd psd;
     for (int bin = lowest_bin; bin >= 0; --bin) {  // ascending frequency
         if (sample_count[bin] == 0) continue;
         psd.frequency.push_back(radial_bin_centre(bin, bins_per_octave));
-        psd.power.push_back(power_sum[bin] / sample_count[bin] * density_scale);
+        psd.power.push_back(power_sum[bin] / sample_count[bin] * spectrum.density_scale);
     }
     return psd;
+}
+
+PolarPsd polar_psd_of(const WindowedSpectrum& spectrum, int bins_per_octave, int angle_bins) {
+    const int lowest_bin = radial_bin(1.0 / std::min(spectrum.width, spectrum.height), bins_per_octave);
+    const std::size_t cells = std::size_t(lowest_bin + 1) * angle_bins;
+    std::vector<double> power_sum(cells, 0.0), sample_count(cells, 0.0);
+    for_each_frequency(spectrum, [&](double fx, double fy_down, double multiplicity, double power) {
+        const double frequency = std::hypot(fx, fy_down);
+        if (frequency > kNyquist) return;
+        const int bin = radial_bin(frequency, bins_per_octave);
+        if (bin > lowest_bin) return;
+        // θ mod 180° in units of cells, shifted half a cell so that cell 0 is centred on the x
+        // axis: axis-aligned textures (common) put their power in cell centres, not on an edge.
+        double angle = std::atan2(-fy_down, fx) / kPi * angle_bins + 0.5;
+        angle -= angle_bins * std::floor(angle / angle_bins);
+        const int cell = std::min(int(angle), angle_bins - 1);
+        power_sum[std::size_t(bin) * angle_bins + cell] += multiplicity * power;
+        sample_count[std::size_t(bin) * angle_bins + cell] += multiplicity;
+    });
+    PolarPsd psd;
+    psd.bins_per_octave = bins_per_octave;
+    psd.angle_bins = angle_bins;
+    for (int bin = lowest_bin; bin >= 0; --bin) {  // ascending frequency, as radial_psd
+        double bin_samples = 0;
+        for (int a = 0; a < angle_bins; ++a) bin_samples += sample_count[std::size_t(bin) * angle_bins + a];
+        if (bin_samples == 0) continue;
+        psd.frequency.push_back(radial_bin_centre(bin, bins_per_octave));
+        for (int a = 0; a < angle_bins; ++a) {
+            const std::size_t i = std::size_t(bin) * angle_bins + a;
+            psd.samples.push_back(sample_count[i]);
+            psd.power.push_back(sample_count[i] > 0 ? power_sum[i] / sample_count[i] * spectrum.density_scale : 0.0);
+        }
+    }
+    return psd;
+}
+
+CentredSpectrum centred_spectrum_of(const WindowedSpectrum& spectrum, int size) {
+    CentredSpectrum centred;
+    centred.size = size;
+    centred.power.assign(std::size_t(size) * size, 0.0);
+    std::vector<double> sample_count(centred.power.size(), 0.0);
+    const auto add = [&](double fx, double fy_down, double power) {
+        const int i = std::clamp(int(std::floor((fx + 0.5) * size)), 0, size - 1);
+        const int j = std::clamp(int(std::floor((fy_down + 0.5) * size)), 0, size - 1);  // ½ − fy_up
+        centred.power[std::size_t(j) * size + i] += power;
+        sample_count[std::size_t(j) * size + i] += 1;
+    };
+    for_each_frequency(spectrum, [&](double fx, double fy_down, double multiplicity, double power) {
+        add(fx, fy_down, power);
+        if (multiplicity == 2) add(-fx, -fy_down, power);
+    });
+    for (std::size_t i = 0; i < centred.power.size(); ++i)
+        if (sample_count[i] > 0) centred.power[i] *= spectrum.density_scale / sample_count[i];
+    return centred;
+}
+
+/// polar_log_psd_distance_db and polar_log_psd_angular_db, or NaNs where no radius bin
+/// qualifies (compare_images reports that as "n/a" rather than failing on small images the
+/// other metrics handle).
+struct PolarDistances {
+    double total_db, angular_db;
+};
+PolarDistances polar_distances_or_nan(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    if (a.bins_per_octave != b.bins_per_octave || a.angle_bins != b.angle_bins)
+        throw Error("polar_log_psd_distance_db: the spectra use different grids (" + std::to_string(a.bins_per_octave) +
+                    " vs " + std::to_string(b.bins_per_octave) + " bins per octave, " + std::to_string(a.angle_bins) +
+                    " vs " + std::to_string(b.angle_bins) + " angle bins)");
+    const int angle_bins = a.angle_bins;
+    struct Sector {
+        double power_a, power_b, weight;
+        std::size_t radius;  ///< index of its radius bin among the kept ones
+    };
+    std::size_t kept_radii = 0;
+    std::vector<Sector> sectors;
+    std::size_t i = 0, j = 0;
+    while (i < a.frequency.size() && j < b.frequency.size()) {
+        const double fa = a.frequency[i], fb = b.frequency[j];
+        if (std::abs(fa - fb) > 1e-9 * std::max(fa, fb)) {  // matched as log_psd_distance_db matches
+            (fa < fb ? i : j) += 1;
+            continue;
+        }
+        // Finest sectors first: d sectors of angle_bins/d consecutive cells each.
+        for (int d = angle_bins; d >= 1; --d) {
+            if (angle_bins % d != 0) continue;
+            const int width = angle_bins / d;
+            std::vector<Sector> candidate;
+            bool enough = true;
+            for (int s = 0; s < d && enough; ++s) {
+                double sum_a = 0, count_a = 0, sum_b = 0, count_b = 0;
+                for (int c = s * width; c < (s + 1) * width; ++c) {
+                    const std::size_t ia = i * angle_bins + c, ib = j * angle_bins + c;
+                    sum_a += a.power[ia] * a.samples[ia];
+                    count_a += a.samples[ia];
+                    sum_b += b.power[ib] * b.samples[ib];
+                    count_b += b.samples[ib];
+                }
+                enough = count_a >= min_samples && count_b >= min_samples;
+                candidate.push_back({sum_a / std::max(count_a, 1.0), sum_b / std::max(count_b, 1.0), 1.0 / d, kept_radii});
+            }
+            if (enough) {
+                sectors.insert(sectors.end(), candidate.begin(), candidate.end());
+                ++kept_radii;
+                break;
+            }
+        }
+        ++i, ++j;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (sectors.empty()) return {nan, nan};
+    double strongest = 0;
+    for (const Sector& s : sectors) strongest = std::max({strongest, s.power_a, s.power_b});
+    if (strongest <= 0) return {nan, nan};  // both constant
+    const double floor = strongest * 1e-6;  // 60 dB
+    // The angular part compares each spectrum's sectors relative to its own mean power over the
+    // radius bin (its radial PSD there), so a level error common to all directions drops out.
+    // (Subtracting the mean dB difference instead would not: for a spectrum peaked in one
+    // direction the mean of the logs sits far under the log of the mean, Jensen's inequality.)
+    std::vector<double> radius_mean_a(kept_radii, 0.0), radius_mean_b(kept_radii, 0.0);
+    for (const Sector& s : sectors) {
+        radius_mean_a[s.radius] += s.weight * std::max(s.power_a, floor);
+        radius_mean_b[s.radius] += s.weight * std::max(s.power_b, floor);
+    }
+    double sum_squares = 0, residual_squares = 0;
+    for (const Sector& s : sectors) {
+        const double pa = std::max(s.power_a, floor), pb = std::max(s.power_b, floor);
+        const double db = 10.0 * std::log10(pa / pb);
+        const double residual = db - 10.0 * std::log10(radius_mean_a[s.radius] / radius_mean_b[s.radius]);
+        sum_squares += s.weight * db * db;
+        residual_squares += s.weight * residual * residual;
+    }
+    return {std::sqrt(sum_squares / kept_radii), std::sqrt(residual_squares / kept_radii)};
+}
+
+}  // namespace
+
+RadialPsd radial_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave) {
+    require_bins_per_octave(bins_per_octave, "radial_psd");
+    return radial_psd_of(windowed_spectrum(plane, width, height, "radial_psd"), bins_per_octave);
+}
+
+PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave, int angle_bins) {
+    require_bins_per_octave(bins_per_octave, "polar_psd");
+    if (angle_bins < 1) throw Error("polar_psd: angle_bins must be at least 1, got " + std::to_string(angle_bins));
+    return polar_psd_of(windowed_spectrum(plane, width, height, "polar_psd"), bins_per_octave, angle_bins);
+}
+
+namespace {
+PolarDistances polar_distances(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    const PolarDistances distances = polar_distances_or_nan(a, b, min_samples);
+    if (std::isnan(distances.total_db))
+        throw Error("polar_log_psd_distance_db: no radius bin where both spectra hold " + std::to_string(min_samples) +
+                    " samples with power (images too small, constant, or of different bins?)");
+    return distances;
+}
+}  // namespace
+
+double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    return polar_distances(a, b, min_samples).total_db;
+}
+
+double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples) {
+    return polar_distances(a, b, min_samples).angular_db;
+}
+
+CentredSpectrum centred_spectrum(const std::vector<float>& plane, int width, int height, int size) {
+    if (size < 1) throw Error("centred_spectrum: size must be at least 1, got " + std::to_string(size));
+    return centred_spectrum_of(windowed_spectrum(plane, width, height, "centred_spectrum"), size);
 }
 
 double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b) {
@@ -180,6 +372,115 @@ double wasserstein1(const std::vector<float>& a, const std::vector<float>& b) {
         x = next;
     }
     return distance;
+}
+
+GradientStatistics gradient_statistics(const std::vector<float>& plane, int width, int height, int orientation_bins) {
+    if (width < 3 || height < 3 || plane.size() != std::size_t(width) * height)
+        throw Error("gradient_statistics: plane of " + std::to_string(plane.size()) + " values does not match a " +
+                    std::to_string(width) + "x" + std::to_string(height) + " image of at least 3x3");
+    if (orientation_bins < 1)
+        throw Error("gradient_statistics: orientation_bins must be at least 1, got " + std::to_string(orientation_bins));
+    double mean = 0, mean_square = 0;
+    for (float v : plane) mean += v, mean_square += double(v) * v;
+    mean /= double(plane.size());
+    const double sigma = std::sqrt(std::max(0.0, mean_square / double(plane.size()) - mean * mean));
+    if (!(sigma > 0)) throw Error("gradient_statistics: the plane is constant (no gradient to describe)");
+
+    GradientStatistics statistics;
+    statistics.orientation.assign(orientation_bins, 0.0);
+    statistics.magnitude_over_sigma.reserve(std::size_t(width - 2) * (height - 2));
+    const auto at = [&](int x, int y) { return double(plane[std::size_t(y) * width + x]); };
+    double total = 0;
+    for (int y = 1; y < height - 1; ++y)
+        for (int x = 1; x < width - 1; ++x) {
+            const double gx = 0.5 * (at(x + 1, y) - at(x - 1, y));
+            const double gy = 0.5 * (at(x, y - 1) - at(x, y + 1));  // y up, as spectral_orientation
+            const double magnitude = std::hypot(gx, gy);
+            statistics.magnitude_over_sigma.push_back(float(magnitude / sigma));
+            if (magnitude == 0) continue;
+            double position = std::atan2(gy, gx) / kPi * orientation_bins;  // in bins, centres at integers
+            position -= orientation_bins * std::floor(position / orientation_bins);
+            const int lower = std::min(int(position), orientation_bins - 1);
+            const double upper_share = position - lower;
+            statistics.orientation[lower] += magnitude * (1 - upper_share);
+            statistics.orientation[(lower + 1) % orientation_bins] += magnitude * upper_share;
+            total += magnitude;
+        }
+    for (double& h : statistics.orientation) h /= total;
+    return statistics;
+}
+
+double circular_wasserstein1_degrees(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size() || a.empty())
+        throw Error("circular_wasserstein1_degrees: histograms of " + std::to_string(a.size()) + " and " +
+                    std::to_string(b.size()) + " bins (need the same non-zero count)");
+    double total_a = 0, total_b = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) total_a += a[k], total_b += b[k];
+    if (!(total_a > 0) || !(total_b > 0)) throw Error("circular_wasserstein1_degrees: a histogram is empty");
+    // On a circle the flow across the cut before bin 0 is free: W1 = min_c Σ|d_k − c|·Δ with
+    // d_k the CDF difference, minimised by c = the median of the d_k (Werman, Peleg & Rosenfeld 1985).
+    std::vector<double> cdf_difference(a.size());
+    double running = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) cdf_difference[k] = running += a[k] / total_a - b[k] / total_b;
+    std::vector<double> sorted = cdf_difference;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    double distance = 0;
+    for (double d : cdf_difference) distance += std::abs(d - median);
+    return distance * 180.0 / double(a.size());
+}
+
+std::array<double, 2> cielab_chroma(float r, float g, float b) {
+    // Linear Rec.709 → XYZ (D65), relative to the white point; then CIE 1976 L*a*b*'s f, whose
+    // linear toe handles dark and negative (out-of-gamut render) values without a cube root of < 0.
+    const double x = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / 0.95047;
+    const double y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
+    const double z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / 1.08883;
+    const auto f = [](double t) {
+        constexpr double delta = 6.0 / 29.0;
+        return t > delta * delta * delta ? std::cbrt(t) : t / (3 * delta * delta) + 4.0 / 29.0;
+    };
+    return {500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+}
+
+double false_colour_rate(const Image& reference, const Image& test) {
+    require_rgb(reference, "false_colour_rate: reference");
+    require_rgb(test, "false_colour_rate: test");
+    // ΔE*ab ≈ 2.3 is one just-noticeable difference (Sharma 2003): a bin is one JND wide, so the
+    // one-bin dilation forgives a chroma within about a JND of one the photo has.
+    constexpr double kBin = 2.3, kLow = -128.0;
+    constexpr int kBins = 112;  // ⌈256 / 2.3⌉: a*, b* ∈ [−128, 128) (outliers clamp to the edge)
+    constexpr double kHeld = 0.995;
+    const auto bin_of = [&](const float* p) {
+        const std::array<double, 2> chroma = cielab_chroma(p[0], p[1], p[2]);
+        const int i = std::clamp(int(std::floor((chroma[0] - kLow) / kBin)), 0, kBins - 1);
+        const int j = std::clamp(int(std::floor((chroma[1] - kLow) / kBin)), 0, kBins - 1);
+        return j * kBins + i;
+    };
+    std::vector<double> counts(kBins * kBins, 0.0);
+    for (std::size_t p = 0; p < reference.pixel_count(); ++p) counts[bin_of(&reference.pixels[p * 3])] += 1;
+    std::vector<int> order(counts.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+    std::sort(order.begin(), order.end(), [&](int u, int v) { return counts[u] > counts[v]; });
+    std::vector<char> held(counts.size(), 0), region(counts.size(), 0);
+    double cumulative = 0;
+    for (int bin : order) {
+        if (cumulative >= kHeld * double(reference.pixel_count())) break;
+        held[bin] = 1;
+        cumulative += counts[bin];
+    }
+    for (int j = 0; j < kBins; ++j)
+        for (int i = 0; i < kBins; ++i) {
+            if (!held[j * kBins + i]) continue;
+            for (int dj = -1; dj <= 1; ++dj)
+                for (int di = -1; di <= 1; ++di) {
+                    const int u = i + di, v = j + dj;
+                    if (u >= 0 && v >= 0 && u < kBins && v < kBins) region[v * kBins + u] = 1;
+                }
+        }
+    std::size_t outside = 0;
+    for (std::size_t p = 0; p < test.pixel_count(); ++p) outside += !region[bin_of(&test.pixels[p * 3])];
+    return double(outside) / double(test.pixel_count());
 }
 
 std::array<double, 3> channel_means(const Image& rgb) {
@@ -232,8 +533,37 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
             throw Error(std::string("compare_images: channel ") + kChannelNames[c] + ": " + e.what());
         }
     }
-    report.psd_reference_luma = radial_psd(luma_plane(reference), reference.width, reference.height);
-    report.psd_test_luma = radial_psd(luma_plane(test), test.width, test.height);
+    // One windowed spectrum of each luma serves the radial, the polar and the plotted spectrum.
+    const std::vector<float> reference_luma = luma_plane(reference), test_luma = luma_plane(test);
+    const WindowedSpectrum reference_spectrum =
+        windowed_spectrum(reference_luma, reference.width, reference.height, "compare_images: reference");
+    const WindowedSpectrum test_spectrum = windowed_spectrum(test_luma, test.width, test.height, "compare_images: test");
+    constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
+    report.psd_reference_luma = radial_psd_of(reference_spectrum, kBinsPerOctave);
+    report.psd_test_luma = radial_psd_of(test_spectrum, kBinsPerOctave);
+    const PolarDistances polar = polar_distances_or_nan(polar_psd_of(reference_spectrum, kBinsPerOctave, kAngleBins),
+                                                        polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
+    report.polar_log_psd_db = polar.total_db;
+    report.polar_log_psd_angular_db = polar.angular_db;
+    const int plot_size = std::min({kPlotSize, reference.width, reference.height, test.width, test.height});
+    report.spectrum_reference_luma = centred_spectrum_of(reference_spectrum, plot_size);
+    report.spectrum_test_luma = centred_spectrum_of(test_spectrum, plot_size);
+
+    if (std::min({reference.width, reference.height, test.width, test.height}) >= 3) {
+        const GradientStatistics reference_gradients =
+            gradient_statistics(reference_luma, reference.width, reference.height);
+        const GradientStatistics test_gradients = gradient_statistics(test_luma, test.width, test.height);
+        report.gradient_orientation_degrees =
+            circular_wasserstein1_degrees(reference_gradients.orientation, test_gradients.orientation);
+        double mean_magnitude = 0;
+        for (float m : reference_gradients.magnitude_over_sigma) mean_magnitude += m;
+        mean_magnitude /= double(reference_gradients.magnitude_over_sigma.size());
+        report.gradient_magnitude_w1 =
+            wasserstein1(reference_gradients.magnitude_over_sigma, test_gradients.magnitude_over_sigma) / mean_magnitude;
+    } else {
+        report.gradient_orientation_degrees = report.gradient_magnitude_w1 = std::numeric_limits<double>::quiet_NaN();
+    }
+    report.false_colour_rate = false_colour_rate(reference, test);
     return report;
 }
 
@@ -256,6 +586,21 @@ std::string format_report(const ComparisonReport& report) {
     add_row("log-PSD dB", report.log_psd_db);
     std::snprintf(line, sizeof line, "colour covariance error (relative Frobenius): %.5g\n", report.covariance_error);
     text += line;
+    // NaN (images too small for the measure) prints as "n/a", not as a number to trust.
+    const auto value = [](double v, const char* format) {
+        char buffer[32];
+        if (std::isnan(v)) return std::string("n/a");
+        std::snprintf(buffer, sizeof buffer, format, v);
+        return std::string(buffer);
+    };
+    text += "2D log-PSD distance (luma, log-polar sectors): " + value(report.polar_log_psd_db, "%.3g") +
+            " dB, of which angular (orientation) " + value(report.polar_log_psd_angular_db, "%.3g") + " dB\n";
+    text += "gradient orientation W1 (luma, |grad|-weighted, mod 180): " +
+            value(report.gradient_orientation_degrees, "%.3g") + " deg\n";
+    text += "gradient magnitude W1 (|grad|/sigma, relative to the reference mean): " +
+            value(report.gradient_magnitude_w1, "%.3g") + "\n";
+    text += "false-colour rate (test chroma outside the reference's 99.5% a*b* region): " +
+            value(100.0 * report.false_colour_rate, "%.3g") + " %\n";
     return text;
 }
 
