@@ -263,6 +263,12 @@ TEST(PluginImageInput, HintErrorsGiveTheValueAsGiven)
         << hint_error("stex:scale", -1);
     EXPECT_NE(hint_error("stex:scale", "-1").find("image.scale: must be positive, got -1"), std::string::npos);
     EXPECT_NE(hint_error("stex:scale", -0.5f).find("image.scale: must be positive, got -0.5"), std::string::npos);
+    // An int scale is a scale (it was read as 0, so `--iconfig stex:scale 2` was rejected too).
+    ImageSpec int_scale;
+    int_scale.attribute("stex:scale", 2);
+    auto scaled = ImageInput::open(path, &int_scale);
+    ASSERT_TRUE(scaled) << OIIO::geterror();
+    EXPECT_EQ(scaled->spec().get_float_attribute("stex:scale"), 2.0f);
     const std::string empty = hint_error("stex:channels", "");
     EXPECT_NE(empty.find("stex:channels (image.channels): expected \"RGB\", \"RGBA\" or \"Y\", got \"\""), std::string::npos) << empty;
     EXPECT_NE(empty.find(path), std::string::npos) << empty;
