@@ -140,8 +140,12 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
     if (!integer_hint(config, "stex:seed", 0, 0xffffffffll, value, problem)) return false;
     description.seed = std::uint32_t(value);
     if (const ParamValue* p = config.find_attribute("stex:scale")) {
-        if (p->type() == TypeFloat || p->type() == TypeInt) {
+        // OIIO 2.4's get_float() gives 0 for an int (what oiiotool --iconfig makes of "-1"):
+        // each type is read as itself, so that a message quotes the value given.
+        if (p->type() == TypeFloat) {
             layout.scale = p->get_float();
+        } else if (p->type() == TypeInt) {
+            layout.scale = p->get_int();
         } else if (p->type() == TypeString) {
             double scale = 0;
             if (!parse_exact(p->get_string(), scale)) {
@@ -160,6 +164,14 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
             return false;
         }
         layout.channels = p->get_string();
+        // Checked here rather than with the rest of the layout so that the message names the
+        // hint: an empty string is an error, not "the default" (oiiotool's --iconfig with an
+        // empty value removes the hint instead, so it never gets here).
+        const std::string channels_problem = stochtex::image_channels_problem(layout.channels);
+        if (!channels_problem.empty()) {
+            problem = "stex:channels (image.channels): " + channels_problem;
+            return false;
+        }
     }
     // The light direction of models that have one (ptm), "x,y,z" or 3 floats: the core sets it
     // and rejects models without one.

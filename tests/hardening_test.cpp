@@ -3,11 +3,14 @@
 // data/exemplars/concrete_512.png, never stored: each test says how its reproducer is built.
 #include "test_support.h"
 
+#include "models/ptm/ptm_coefficient_file.h"
+
 #include <stochtex/analysis.h>
 #include <stochtex/bake.h>
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 #include <stochtex/mip_image.h>
+#include <stochtex/models/ptm.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
@@ -22,6 +25,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
+#include <functional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -298,6 +303,67 @@ TEST(HardeningCli, FailedWriteKeepsThePreviousOutput)
     // A folder that does not exist: an error naming the file, nothing written.
     expect_clean_error(run_stex({"render", texture, "-o", (dir / "missing" / "o.exr").string()}, dir), "o.exr");
     expect_clean_error(run_stex({"analyze", photo, "-o", (dir / "missing" / "t.stex").string()}, dir), "t.stex");
+}
+
+// The ptm writers (coefficient maps, normal maps, light lists) go through the same safe write:
+// past a file-size limit each fails with its file named, the previous output stays as it was
+// and no temporary is left. Before, the normal map and the light list were truncated in place.
+TEST(HardeningPtm, FailedWritesKeepThePreviousOutputs)
+{
+    const fs::path dir = stochtex::test::temp_dir("FailedPtmWrite");
+    std::mt19937 random(16);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    auto noise = [&](int side, int channels) {  // incompressible, so that the files are large
+        stochtex::Image image(side, side, channels);
+        for (float& v : image.pixels) v = unit(random);
+        return image;
+    };
+    auto coefficients = [&](int side) {
+        stochtex::PtmMaps maps;
+        maps.coefficients = noise(side, stochtex::ptm_channel_count(maps.colour));
+        return maps;
+    };
+    auto lights = [](int count) {
+        stochtex::LightSet set;
+        for (int i = 0; i < count; ++i) {
+            set.images.push_back("photo-" + std::to_string(i) + ".png");
+            set.directions.push_back({0.0, 0.0, 1.0});
+        }
+        return set;
+    };
+    struct Writer {
+        std::string name;
+        std::function<void(const std::string&, bool large)> write;
+    };
+    const Writer writers[] = {
+        {"c.exr", [&](const std::string& path, bool large) { write_ptm_coefficients(path, coefficients(large ? 256 : 8)); }},
+        {"n.exr", [&](const std::string& path, bool large) { write_normal_map(path, noise(large ? 256 : 8, 3)); }},
+        {"n.png", [&](const std::string& path, bool large) { write_normal_map(path, noise(large ? 256 : 8, 3)); }},
+        {"l.lp", [&](const std::string& path, bool large) { write_light_set(path, lights(large ? 4000 : 2)); }},
+    };
+    for (const Writer& writer : writers) {
+        const std::string out = (dir / writer.name).string();
+        writer.write(out, false);
+        const std::string before = read_bytes(out);
+        ASSERT_FALSE(before.empty()) << writer.name;
+        const std::vector<std::string> files = files_in(dir);
+        rlimit old_limit{};
+        getrlimit(RLIMIT_FSIZE, &old_limit);
+        rlimit limit = old_limit;
+        limit.rlim_cur = 32 * 1024;  // each large output is well above it, each small one below
+        signal(SIGXFSZ, SIG_IGN);
+        setrlimit(RLIMIT_FSIZE, &limit);
+        const std::string message = error_of([&] { writer.write(out, true); });
+        setrlimit(RLIMIT_FSIZE, &old_limit);
+        EXPECT_TRUE(contains(message, out)) << writer.name << ": " << message;
+        EXPECT_TRUE(read_bytes(out) == before) << writer.name << " was changed";
+        EXPECT_EQ(files_in(dir), files) << writer.name << ": a temporary was left behind";
+    }
+    // A folder that does not exist: an error naming the file, nothing written.
+    const std::string missing = (dir / "missing" / "m.lp").string();
+    EXPECT_TRUE(contains(error_of([&] { write_light_set(missing, lights(2)); }), missing));
+    EXPECT_TRUE(contains(error_of([&] { write_ptm_coefficients((dir / "missing" / "m.exr").string(), coefficients(8)); }),
+                         "m.exr"));
 }
 
 // SIGINT in the middle of a bake: the previous map is byte-identical and no temporary remains.

@@ -9,6 +9,7 @@
 #include "models/wavelet/wavelet_noise.h"
 
 #include <stochtex/analysis.h>
+#include <stochtex/error.h>
 #include <stochtex/image.h>
 #include <stochtex/mip_image.h>
 #include <stochtex/stex_file.h>
@@ -197,6 +198,91 @@ TEST(PluginImageInput, OpenHintsOverrideTheFileAndAreChecked)
     EXPECT_NE(hint_error("stex:seed", -1).find("stex:seed: must be in [0, 4294967295]"), std::string::npos);
     for (const char* name : {"stex:width", "stex:widht", "stex:scale"})
         EXPECT_NE(hint_error(name, 0).find(path), std::string::npos) << name << ": the message names the file";
+}
+
+// Issue 16: stex:width/height 1048576 made `oiiotool -o` grow without bound, and 4096² tiles on
+// a 64² image cost 1.5 GB (every MIP level a whole tile). Both are rejected at open, naming the
+// field and the limit; the default layout, and the default tile on any image, stay valid.
+TEST(PluginImageInput, VirtualImageAndTileSizesAreBounded)
+{
+    const std::string dir = test::temp_dir("plugin-bounds");
+    const std::string path = write_texture(dir, "t.stex", layout(64, 64));
+    auto open_with = [&](std::initializer_list<std::pair<const char*, int>> hints) {
+        ImageSpec config;
+        for (const auto& [name, value] : hints) config.attribute(name, value);
+        return open_error(path, config);
+    };
+    const std::string huge = open_with({{"stex:width", 1 << 20}, {"stex:height", 1 << 20}});
+    EXPECT_NE(huge.find("image: 1048576 x 1048576 pixels is too large (width × height at most 1073741824 = 2^30)"),
+              std::string::npos)
+        << huge;
+    EXPECT_NE(huge.find(path), std::string::npos) << huge;
+    const std::string big_tile = open_with({{"stex:tile_width", 4096}});
+    EXPECT_NE(big_tile.find("image.tile_width: must be at most 64 for image.width 64 (its next power of two, or 64), "
+                            "got 4096"),
+              std::string::npos)
+        << big_tile;
+    EXPECT_NE(open_with({{"stex:height", 100}, {"stex:tile_height", 256}}).find("image.tile_height: must be at most 128"),
+              std::string::npos);
+
+    // At the limits, and the layouts that were valid before and stay so.
+    EXPECT_EQ(open_with({{"stex:width", 32768}, {"stex:height", 32768}}), "");
+    EXPECT_EQ(open_with({{"stex:width", 1 << 20}, {"stex:height", 1024}}), "");
+    EXPECT_EQ(open_with({{"stex:width", 16384}, {"stex:height", 16384}, {"stex:tile_width", 4096}}), "");
+    EXPECT_EQ(open_with({{"stex:width", 65}, {"stex:tile_width", 128}}), "");
+    EXPECT_EQ(open_with({{"stex:width", 20}, {"stex:height", 10}}), "") << "the default 64² tile on a small image";
+    ImageSpec defaults;  // the file's image block dropped: ImageLayout's defaults (16384², 64² tiles)
+    TextureDescription d = exemplar_texture(true);
+    d.image.reset();
+    const std::string plain = (fs::path(dir) / "plain.stex").string();
+    write_stex(plain, d);
+    EXPECT_EQ(open_error(plain, defaults), "");
+
+    // The same rules hold for a .stex file's own "image" block.
+    d.image = layout(64, 64, 4096);
+    try {
+        write_stex((fs::path(dir) / "bad.stex").string(), d);
+        ADD_FAILURE() << "a 4096² tile on a 64² image was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.stex: image.tile_width: must be at most 64"), std::string::npos)
+            << e.what();
+    }
+}
+
+// Issue 16: `stex:scale -1` said "got 0" and `stex:channels ""` silently meant RGB.
+TEST(PluginImageInput, HintErrorsGiveTheValueAsGiven)
+{
+    const std::string dir = test::temp_dir("plugin-hint-values");
+    const std::string path = write_texture(dir, "t.stex", layout(64, 64));
+    auto hint_error = [&](const char* name, auto value) {
+        ImageSpec bad;
+        bad.attribute(name, value);
+        return open_error(path, bad);
+    };
+    EXPECT_NE(hint_error("stex:scale", -1).find("image.scale: must be positive, got -1"), std::string::npos)
+        << hint_error("stex:scale", -1);
+    EXPECT_NE(hint_error("stex:scale", "-1").find("image.scale: must be positive, got -1"), std::string::npos);
+    EXPECT_NE(hint_error("stex:scale", -0.5f).find("image.scale: must be positive, got -0.5"), std::string::npos);
+    // An int scale is a scale (it was read as 0, so `--iconfig stex:scale 2` was rejected too).
+    ImageSpec int_scale;
+    int_scale.attribute("stex:scale", 2);
+    auto scaled = ImageInput::open(path, &int_scale);
+    ASSERT_TRUE(scaled) << OIIO::geterror();
+    EXPECT_EQ(scaled->spec().get_float_attribute("stex:scale"), 2.0f);
+    const std::string empty = hint_error("stex:channels", "");
+    EXPECT_NE(empty.find("stex:channels (image.channels): expected \"RGB\", \"RGBA\" or \"Y\", got \"\""), std::string::npos) << empty;
+    EXPECT_NE(empty.find(path), std::string::npos) << empty;
+    EXPECT_NE(hint_error("stex:channels", "XYZ").find("stex:channels (image.channels): expected \"RGB\", \"RGBA\" or \"Y\", got \"XYZ\""),
+              std::string::npos);
+    EXPECT_NE(hint_error("stex:channels", 3).find("stex:channels: expected a string (RGB, RGBA or Y)"), std::string::npos);
+
+    // As oiiotool passes it (--iconfig makes "-1" an int). oiiotool drops an empty value
+    // (`--iconfig stex:channels ""` removes the hint), so only the API can pass "".
+    if (!test::on_path("oiiotool")) GTEST_SKIP() << "oiiotool is not installed";
+    const test::ProgramResult scale =
+        test::run_program({"oiiotool", "--iconfig", "stex:scale", "-1", "--info", path}, dir);
+    EXPECT_FALSE(scale.succeeded()) << scale;
+    EXPECT_TRUE(test::contains(scale.output(), "image.scale: must be positive, got -1")) << scale;
 }
 
 TEST(PluginImageInput, BadFilesFailWithTheFileAndTheProblem)

@@ -24,5 +24,8 @@ void write_stex(const std::string& path, const TextureDescription& description);
 void validate(const TextureDescription& description, const std::string& source_name);
 /// The checks of the optional "image" block alone (for layouts overridden at open time).
 void validate_image_layout(const ImageLayout& image, const std::string& source_name);
+/// What is wrong with an image layout's `channels` ("expected \"RGB\", \"RGBA\" or \"Y\",
+/// got …"), or "" if it is one of those: the one rule, for front-ends that name the field their way.
+std::string image_channels_problem(const std::string& channels);
 
 }  // namespace stochtex

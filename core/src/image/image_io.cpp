@@ -2,6 +2,8 @@
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 
+#include "image/image_output.h"
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/filesystem.h>
@@ -113,24 +115,43 @@ Image read_image_linear(const std::string& path, const ImageReadOptions& options
     return image;
 }
 
-void write_image(const std::string& path, const Image& linear_rgb)
+void write_pixels_atomically(OIIO::ImageOutput& output, const std::string& path, const OIIO::ImageSpec& spec,
+                             const float* pixels, const std::string& what)
 {
-    if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
-    // The pixels go to a temporary renamed into place (atomic_write.h). Where the format takes
-    // an I/O proxy they go through a FILE of ours, whose error flag is checked at the end:
-    // OIIO's PNG writer reports no failed write (past a file-size limit it "succeeded" with a
-    // truncated file). Declared before `output`, so that they outlive it.
+    const std::string failed = path + ": cannot write " + what + ": ";
+    // Where the format takes an I/O proxy the pixels go through a FILE of ours, whose error flag
+    // is checked at the end: OIIO's PNG writer reports no failed write (past a file-size limit
+    // it "succeeded" with a truncated file).
     AtomicOutput file(path);
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> stream(nullptr, &std::fclose);
     std::unique_ptr<OIIO::Filesystem::IOFile> proxy;
+    // The caller's `output` outlives the proxy: it is closed before the proxy goes, on every
+    // path (an open output's destructor would write through a dead proxy).
+    struct CloseFirst {
+        OIIO::ImageOutput& output;
+        ~CloseFirst() { output.close(); }
+    } close_first{output};
+    if (output.supports("ioproxy")) {
+        stream.reset(std::fopen(file.temporary().c_str(), "wb"));
+        if (!stream) throw Error(failed + std::strerror(errno));
+        proxy = std::make_unique<OIIO::Filesystem::IOFile>(stream.get(), OIIO::Filesystem::IOProxy::Write);
+        if (!output.set_ioproxy(proxy.get())) throw Error(failed + output.geterror());
+    }
+    if (!output.open(file.temporary(), spec) || !output.write_image(OIIO::TypeDesc::FLOAT, pixels) || !output.close())
+        throw Error(failed + output.geterror());
+    if (stream) {
+        const bool stream_failed = std::fflush(stream.get()) != 0 || std::ferror(stream.get());
+        const std::string reason = std::strerror(errno);
+        if (std::fclose(stream.release()) != 0 || stream_failed) throw Error(failed + reason);
+    }
+    file.commit();
+}
+
+void write_image(const std::string& path, const Image& linear_rgb)
+{
+    if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
     auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
     if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
-    if (output->supports("ioproxy")) {
-        stream.reset(std::fopen(file.temporary().c_str(), "wb"));
-        if (!stream) throw Error(path + ": cannot write image: " + std::strerror(errno));
-        proxy = std::make_unique<OIIO::Filesystem::IOFile>(stream.get(), OIIO::Filesystem::IOProxy::Write);
-        if (!output->set_ioproxy(proxy.get())) throw Error(path + ": cannot write image: " + output->geterror());
-    }
     const bool linear = is_float_format(path);
     OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
@@ -143,15 +164,7 @@ void write_image(const std::string& path, const Image& linear_rgb)
         for (float& v : encoded.pixels) v = std::clamp(v, 0.0f, 1.0f);
         source = &encoded;
     }
-    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, source->pixels.data()) ||
-        !output->close())
-        throw Error(path + ": cannot write image: " + output->geterror());
-    if (stream) {
-        const bool failed = std::fflush(stream.get()) != 0 || std::ferror(stream.get());
-        const std::string reason = std::strerror(errno);
-        if (std::fclose(stream.release()) != 0 || failed) throw Error(path + ": cannot write image: " + reason);
-    }
-    file.commit();
+    write_pixels_atomically(*output, path, spec, source->pixels.data(), "image");
 }
 
 }  // namespace stochtex

@@ -116,15 +116,39 @@ void check_image_layout(const ImageLayout& image, const std::string& source)
     };
     check_side(image.width, "image.width");
     check_side(image.height, "image.height");
-    auto check_tile = [&](int side, const char* path) {
+    // A host that reads the image whole (oiiotool -o, maketx, an ImageBuf) holds
+    // width × height × channels × 4 bytes of level 0, 4/3 of that with every level: 2^30 pixels
+    // (32768², the largest `stex bake` writes) is 12 GiB in RGB, 16 GiB in RGBA. Sides alone
+    // allowed 2^40 pixels (12 TiB), which oiiotool tried to fill until it was killed.
+    constexpr std::int64_t max_pixels = std::int64_t(1) << 30;
+    if (std::int64_t(image.width) * image.height > max_pixels)
+        json_fields::fail(source, "image",
+                          std::to_string(image.width) + " x " + std::to_string(image.height) +
+                              " pixels is too large (width × height at most " + std::to_string(max_pixels) +
+                              " = 2^30)");
+    // Memory of a tile read: the host allocates a whole tile, tile_width × tile_height × channels
+    // × 4 bytes (256 MiB for 4096² RGBA), for every tile it reads, and the plugin as much again
+    // for a tile that hangs over the level's edge (and 12 bytes a texel more for Y and RGBA).
+    // Every MIP level, however small, costs a whole tile: 4096² tiles on a 64² image held
+    // 7 levels × 192 MiB for 64² × 12 bytes of texels. A tile side is therefore at most the
+    // image side's next power of two (one tile then covers less than twice the image along that
+    // axis), or the default 64 where that is larger, so that every image keeps the default tile.
+    auto check_tile = [&](int side, int image_side, const char* path, const char* image_path) {
         if (side < 8 || side > 4096 || (side & (side - 1)))
             json_fields::fail(source, path, "must be a power of two in [8, 4096], got " + std::to_string(side));
+        int largest = 64;
+        while (largest < image_side) largest *= 2;
+        if (side > largest)
+            json_fields::fail(source, path,
+                              "must be at most " + std::to_string(largest) + " for " + image_path + " " +
+                                  std::to_string(image_side) + " (its next power of two, or 64), got " +
+                                  std::to_string(side));
     };
-    check_tile(image.tile_width, "image.tile_width");
-    check_tile(image.tile_height, "image.tile_height");
+    check_tile(image.tile_width, image.width, "image.tile_width", "image.width");
+    check_tile(image.tile_height, image.height, "image.tile_height", "image.height");
     check_positive(image.scale, "image.scale", source);
-    if (image.channels != "RGB" && image.channels != "RGBA" && image.channels != "Y")
-        json_fields::fail(source, "image.channels", "expected \"RGB\", \"RGBA\" or \"Y\", got \"" + image.channels + "\"");
+    const std::string channels_problem = image_channels_problem(image.channels);
+    if (!channels_problem.empty()) json_fields::fail(source, "image.channels", channels_problem);
 }
 
 // ---- Reading ------------------------------------------------------------------------------------
@@ -280,6 +304,12 @@ void validate(const TextureDescription& description, const std::string& source)
 }
 
 void validate_image_layout(const ImageLayout& image, const std::string& source) { check_image_layout(image, source); }
+
+std::string image_channels_problem(const std::string& channels)
+{
+    if (channels == "RGB" || channels == "RGBA" || channels == "Y") return {};
+    return "expected \"RGB\", \"RGBA\" or \"Y\", got \"" + channels + "\"";
+}
 
 TextureDescription parse_stex(const std::string& text, const std::string& source_name)
 {

@@ -1,4 +1,5 @@
 // Light sidecars: which photo was taken under which light (docs/models/ptm.md, "Input").
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/models/ptm.h>
 
@@ -186,9 +187,7 @@ void write_light_set(const std::string& path, const LightSet& lights)
                       lights.directions[i][2]);
         text << name << direction << "\n";
     }
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << text.str();
-    if (!out) throw Error(path + ": cannot write the light list");
+    write_file_atomically(path, text.str());
 }
 
 std::vector<Vec3> spiral_light_directions(int count, double min_elevation_degrees, double azimuth_offset_degrees)

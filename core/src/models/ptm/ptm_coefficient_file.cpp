@@ -1,5 +1,7 @@
 #include "models/ptm/ptm_coefficient_file.h"
 
+#include "image/image_output.h"
+
 #include <stochtex/error.h>
 #include <stochtex/models/ptm_parameters.h>
 
@@ -81,8 +83,7 @@ void write_ptm_coefficients(const std::string& path, const PtmMaps& maps)
     const std::vector<std::string> names = ptm_channel_names(maps.colour);
     if (maps.coefficients.channels != int(names.size()) || maps.width() < 1)
         throw Error(path + ": cannot write empty maps or maps with a wrong channel count");
-    const std::string temporary = fs::path(path).replace_extension(".tmp.exr").string();
-    auto output = OIIO::ImageOutput::create(temporary);
+    auto output = OIIO::ImageOutput::create(path);
     if (!output) throw Error(path + ": cannot write OpenEXR: " + OIIO::geterror());
     OIIO::ImageSpec spec(maps.width(), maps.height(), int(names.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames = names;
@@ -91,21 +92,8 @@ void write_ptm_coefficients(const std::string& path, const PtmMaps& maps)
     spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
     spec.attribute("ImageDescription", std::string("stochtex PTM coefficient maps (") + to_string(maps.colour) +
                                            ", Legendre basis; docs/stex-format.md)");
-    const bool written = output->open(temporary, spec) &&
-                         output->write_image(OIIO::TypeDesc::FLOAT, maps.coefficients.pixels.data()) && output->close();
-    if (!written) {
-        const std::string reason = output->geterror();
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        throw Error(path + ": cannot write the coefficient maps: " + reason);
-    }
-    std::error_code error;
-    fs::rename(temporary, path, error);
-    if (error) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        throw Error(path + ": cannot write: " + error.message());
-    }
+    // A failed write keeps the maps that a .stex beside them already names.
+    write_pixels_atomically(*output, path, spec, maps.coefficients.pixels.data(), "the coefficient maps");
 }
 
 }  // namespace stochtex

@@ -12,6 +12,7 @@
 
 #include "models/ptm/legendre_basis.h"
 #include "models/ptm/ptm_functions.h"
+#include "image/image_output.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -87,7 +88,7 @@ SurfaceMaps estimate_surface_maps(const PtmMaps& maps, NormalEstimator estimator
 void write_normal_map(const std::string& path, const Image& normals)
 {
     if (normals.channels != 3 || normals.empty()) throw Error(path + ": a normal map needs 3 channels");
-    auto output = OIIO::ImageOutput::create(path);
+    auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
     if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
     const bool is_float = output->supports("floatpixels") && std::string(output->format_name()) == "openexr";
     OIIO::ImageSpec spec(normals.width, normals.height, 3, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
@@ -95,8 +96,7 @@ void write_normal_map(const std::string& path, const Image& normals)
     spec.attribute("ImageDescription", "tangent-space normal map: 0.5 + 0.5 n, x right, y up (data, not colour)");
     std::vector<float> encoded(normals.pixels.size());
     for (std::size_t i = 0; i < encoded.size(); ++i) encoded[i] = std::clamp(0.5f + 0.5f * normals.pixels[i], 0.0f, 1.0f);
-    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::FLOAT, encoded.data()) || !output->close())
-        throw Error(path + ": cannot write the normal map: " + output->geterror());
+    write_pixels_atomically(*output, path, spec, encoded.data(), "the normal map");
 }
 
 }  // namespace stochtex
