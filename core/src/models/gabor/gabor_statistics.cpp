@@ -115,8 +115,11 @@ public:
         return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) + fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
     }
 
-private:
     static constexpr int size = 97;
+    double step() const { return step_; }
+    const std::vector<double>& values() const { return values_; }
+
+private:
     SphereGaussianTable() : step_(std::log1p(1e6) / (size - 1)), values_(std::size_t(size) * size)
     {
         for (int j = 0; j < size; ++j)
@@ -130,6 +133,12 @@ private:
 };
 
 }  // namespace
+
+SphereAverageTable sphere_average_table()
+{
+    const SphereGaussianTable& table = SphereGaussianTable::get();
+    return {SphereGaussianTable::size, table.step(), table.values()};
+}
 
 double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
 {
