@@ -8,9 +8,7 @@
 #ifndef STOCHTEX_COLOUR_H
 #define STOCHTEX_COLOUR_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
+#include "stochtex_subset.h"
 
 #define STOCHTEX_MAX_KNOTS 64
 #define STOCHTEX_GH_COUNT 12

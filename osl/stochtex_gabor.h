@@ -19,12 +19,7 @@
 #ifndef STOCHTEX_GABOR_H
 #define STOCHTEX_GABOR_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
-#ifndef STOCHTEX_OUT_ARRAY
-#define STOCHTEX_OUT_ARRAY(type) output type
-#endif
+#include "stochtex_subset.h"
 
 #include "stochtex_colour.h"
 #include "stochtex_u64.h"
@@ -451,7 +446,7 @@ float stochtex_sphere_average(string table, int size, float node_step, float alp
 {
     float last = float(size - 1);
     float x = min(log(1.0 + max(0.0, alpha)) / node_step, last), y = min(log(1.0 + max(0.0, beta)) / node_step, last);
-    int i = min(int(x), size - 2), j = min(int(y), size - 2);
+    int i = stochtex_min_int(int(x), size - 2), j = stochtex_min_int(int(y), size - 2);
     float fx = x - float(i), fy = y - float(j);
     float n = float(size);
     float v00 = texture(table, (float(i) + 0.5) / n, (float(j) + 0.5) / n, "interp", "closest", "width", 0.0);

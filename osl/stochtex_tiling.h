@@ -20,12 +20,7 @@
 #ifndef STOCHTEX_TILING_H
 #define STOCHTEX_TILING_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
-#ifndef STOCHTEX_OUT_ARRAY
-#define STOCHTEX_OUT_ARRAY(type) output type
-#endif
+#include "stochtex_subset.h"
 
 #include "stochtex_colour.h"
 #include "stochtex_u64.h"
@@ -94,8 +89,8 @@ void stochtex_tiling_sample_level(string atlas, int width, int height, int atlas
 {
     int level_y = 0;
     for (int l = 0; l < level; ++l)
-        level_y += max(1, height >> l);
-    int lw = max(1, width >> level), lh = max(1, height >> level);
+        level_y += stochtex_max_int(1, height >> l);
+    int lw = stochtex_max_int(1, width >> level), lh = stochtex_max_int(1, height >> level);
     float lx = x * float(lw) / float(width) - 0.5, ly = y * float(lh) / float(height) - 0.5;
     float x0 = floor(lx), y0 = floor(ly);
     float tx = lx - x0, ty = ly - y0;
@@ -124,7 +119,7 @@ void stochtex_tiling_sample(string atlas, int width, int height, int atlas_h, in
                             float y, STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
 {
     float level = clamp(level_in, 0.0, float(level_count - 1));
-    int lower = min(int(level), level_count - 1);
+    int lower = stochtex_min_int(int(level), level_count - 1);
     float t = level - float(lower);
     stochtex_tiling_sample_level(atlas, width, height, atlas_h, lower, x, y, result);
     if (t == 0.0)
@@ -224,7 +219,8 @@ void stochtex_tiling_footprint_estimate(float x, float y, float dudx, float dvdx
         float norm_length = axis == 0 ? length_a : length_b;
         counts[axis] = 1;
         if (norm_length > 1.0)
-            counts[axis] = min(max(int(round(float(taps) * norm_length / max(minor, 1.0))), max(1, taps)), max(taps, max_taps));
+            counts[axis] = stochtex_min_int(stochtex_max_int(int(round(float(taps) * norm_length / max(minor, 1.0))), stochtex_max_int(1, taps)),
+                                            stochtex_max_int(taps, max_taps));
     }
     int na = counts[0], nb = counts[1];
     float piece = max(length_a / float(na), length_b / float(nb));

@@ -13,12 +13,18 @@
 #ifndef STOCHTEX_U64_H
 #define STOCHTEX_U64_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
-#ifndef STOCHTEX_OUT_ARRAY
-#define STOCHTEX_OUT_ARRAY(type) output type
-#endif
+#include "stochtex_subset.h"
+
+// Integer min and max: older OSL releases have them for float only.
+int stochtex_min_int(int a, int b)
+{
+    return a < b ? a : b;
+}
+
+int stochtex_max_int(int a, int b)
+{
+    return a > b ? a : b;
+}
 
 void stochtex_u64_set(int l0, int l1, int l2, int l3, STOCHTEX_OUT_ARRAY(int) r[4])
 {
@@ -107,7 +113,7 @@ int stochtex_u64_bits(int a[4], int shift, int count)
     int result = 0, got = 0, position = shift;
     while (got < count && position < 64) {
         int limb = position / 16, offset = position % 16;
-        int take = min(16 - offset, count - got);
+        int take = stochtex_min_int(16 - offset, count - got);
         result += ((a[limb] >> offset) & ((1 << take) - 1)) << got;
         got += take;
         position += take;

@@ -14,9 +14,7 @@
 #ifndef STOCHTEX_WAVELET_H
 #define STOCHTEX_WAVELET_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
+#include "stochtex_subset.h"
 
 #include "stochtex_colour.h"
 

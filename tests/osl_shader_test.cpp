@@ -215,22 +215,15 @@ TEST(OslCompiler, TestshadeMatchesCore)
     if (!test::on_path("oslc") || !test::on_path("testshade")) GTEST_SKIP() << "oslc/testshade not on PATH: not run";
     const std::string dir = test::temp_dir("testshade");
     const TextureDescription description = concrete(HistogramMode::on);
-    std::ofstream(dir + "/generated.osl") << ShimShader(description, dir).text;
     // testshade --center shades pixel centres, P = ((x + ½)/w, (y + ½)/h, 1); Scale maps it to
     // 0.5 texture units, so 256 px cover 256 exemplar pixels at 512 px per unit (the photo's own
     // pixel scale). The shader's (u, v) = (x, −y): its image is the core's render of
     // v ∈ [−0.5, 0] with rows flipped (docs/osl.md, "Coordinates").
-    const int size = 256;
-    const auto result = test::run_command("cd " + test::shell_quote(dir) + " && oslc generated.osl && testshade --center -g " +
-                                          std::to_string(size) + " " + std::to_string(size) +
-                                          " --param Scale 0.5 -od float -o Color osl.exr stochtex_test");
-    ASSERT_EQ(result.status, 0) << result.output;
-    const Image osl_image = read_image_linear(dir + "/osl.exr");
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    settings.units_per_pixel = 0.5 / size;
-    settings.origin_v = -0.5;
-    const Image core_image = render(*make_texture(description), settings);
+    Image core_image, osl_image;
+    std::string log;
+    ASSERT_TRUE(osl_test::run_testshade(ShimShader(description, dir).text, *make_texture(description), dir, 256, 0.5,
+                                        core_image, osl_image, log))
+        << log;
     const ComparisonReport report = compare_images(core_image, osl_image);
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(report.mean_test[c], report.mean_reference[c], 0.05 * report.stddev_reference[c] + 1e-3) << format_report(report);

@@ -12,13 +12,19 @@
 
 #include <stochtex/error.h>
 #include <stochtex/image.h>
+#include <stochtex/render.h>
+#include <stochtex/texture.h>
+
+#include "test_support.h"
 
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -155,6 +161,44 @@ inline ShaderParameters parse_parameters(const std::string& shader)
     for (auto it = std::sregex_iterator(text.begin(), text.end(), scalar_re); it != std::sregex_iterator(); ++it)
         result.scalars[(*it)[1]] = std::stof((*it)[2]);
     return result;
+}
+
+/// Each RGB channel's standard deviation over 2000 point samples of the core in [−3, 3]²: the
+/// unit the comparisons state their errors in.
+inline std::array<double, 3> channel_sigmas(const stochtex::Texture& texture)
+{
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<double> position(-3.0, 3.0);
+    std::array<double, 3> sum{}, sum2{}, sigma{};
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+        const stochtex::Rgb v = texture.eval({position(rng), position(rng)}, stochtex::Footprint2D{});
+        for (int c = 0; c < 3; ++c) sum[c] += v[c], sum2[c] += double(v[c]) * v[c];
+    }
+    for (int c = 0; c < 3; ++c) sigma[c] = std::sqrt(std::max(1e-30, sum2[c] / n - (sum[c] / n) * (sum[c] / n)));
+    return sigma;
+}
+
+/// Compiles `shader_text` (shader stochtex_test) in `dir` and shades a size² grid with testshade
+/// --center, P over [0, 1]² times `scale`; returns the core's render of the same region
+/// (v ∈ [−scale, 0]) and testshade's image in `core`, `shaded`. False (with the output in
+/// `log`) when oslc or testshade fails.
+inline bool run_testshade(const std::string& shader_text, const stochtex::Texture& texture, const std::string& dir, int size,
+                          double scale, stochtex::Image& core, stochtex::Image& shaded, std::string& log)
+{
+    std::ofstream(dir + "/generated.osl") << shader_text;
+    const auto result = stochtex::test::run_command("cd " + stochtex::test::shell_quote(dir) + " && oslc generated.osl && testshade --center -g " +
+                                          std::to_string(size) + " " + std::to_string(size) + " --param Scale " +
+                                          std::to_string(scale) + " -od float -o Color osl.exr stochtex_test");
+    log = result.output;
+    if (result.status != 0) return false;
+    shaded = stochtex::read_image_linear(dir + "/osl.exr");
+    stochtex::RenderSettings settings;
+    settings.width = settings.height = size;
+    settings.units_per_pixel = scale / size;
+    settings.origin_v = -scale;
+    core = stochtex::render(texture, settings);
+    return true;
 }
 
 /// testshade's image (rows top to bottom at v = 0 … −Scale, the shader's (u, v) = (x, −y)) against

@@ -150,15 +150,7 @@ std::vector<Agreement> compare(const TextureDescription& description, int points
     std::uniform_real_distribution<double> position(-3.0, 3.0), angle(0, 2 * M_PI);
     auto f32 = [](double v) { return double(float(v)); };
 
-    std::array<double, 3> sum{}, sum2{};
-    const int sigma_points = 2000;
-    for (int n = 0; n < sigma_points; ++n) {
-        const Rgb v = texture->eval({position(rng), position(rng)}, Footprint2D{});
-        for (int c = 0; c < 3; ++c) sum[c] += v[c], sum2[c] += double(v[c]) * v[c];
-    }
-    std::array<double, 3> sigma{};
-    for (int c = 0; c < 3; ++c)
-        sigma[c] = std::sqrt(std::max(1e-30, sum2[c] / sigma_points - sum[c] * sum[c] / (double(sigma_points) * sigma_points)));
+    const std::array<double, 3> sigma = osl_test::channel_sigmas(*texture);
 
     std::vector<Agreement> result;
     for (const FootprintClass& fc : footprint_classes) {
@@ -243,20 +235,12 @@ TEST(OslTilingCompiler, GeneratedShaderCompilesAndTestshadeMatchesCore)
     if (!test::on_path("oslc") || !test::on_path("testshade")) GTEST_SKIP() << "oslc/testshade not on PATH (Debian packages no OSL): not run";
     const std::string dir = test::temp_dir("osltilingtestshade");
     const TextureDescription description = colour_tiling(HistogramMode::on);
-    std::ofstream(dir + "/generated.osl") << TilingShim(description, dir).text;
-    // testshade --center: P = ((x + ½)/w, (y + ½)/h, 1); the shader's (u, v) = (x, −y).
-    const int size = 128;
-    const double scale = 0.25;
-    const auto result = test::run_command("cd " + test::shell_quote(dir) + " && oslc generated.osl && testshade --center -g " +
-                                          std::to_string(size) + " " + std::to_string(size) + " --param Scale " +
-                                          std::to_string(scale) + " -od float -o Color osl.exr stochtex_test");
-    ASSERT_EQ(result.status, 0) << result.output;
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    settings.units_per_pixel = scale / size;
-    settings.origin_v = -scale;
-    const double rms = osl_test::testshade_rms_sigma(render(*make_texture(description), settings),
-                                                     read_image_linear(dir + "/osl.exr"));
+    Image core, shaded;
+    std::string log;
+    ASSERT_TRUE(osl_test::run_testshade(TilingShim(description, dir).text, *make_texture(description), dir, 128, 0.25, core,
+                                        shaded, log))
+        << log;
+    const double rms = osl_test::testshade_rms_sigma(core, shaded);
     std::printf("tiling testshade vs stex render: rms %.2e sigma\n", rms);
     EXPECT_LT(rms, 0.01);
 }

@@ -40,8 +40,9 @@ struct GaborShaderData {
 /// Throws Error if the description is invalid or not a gabor texture.
 GaborShaderData gabor_shader_data(const TextureDescription& description);
 
-/// The isotropic retained-variance table: size × size values, values[j·size + i] at
-/// log(1 + α) = i·step, log(1 + β) = j·step.
+/// The table behind the isotropic retained variance (gabor_statistics.cpp): E over the unit
+/// sphere of exp(−α u₁² − β u₂²), size × size values, values[j·size + i] at log(1 + α) = i·step,
+/// log(1 + β) = j·step, interpolated bilinearly between nodes.
 struct GaborSphereTable {
     int size = 0;
     double step = 0;

@@ -4,7 +4,6 @@
 #include <stochtex/stex_file.h>
 
 #include "models/gabor/gabor_noise.h"
-#include "models/gabor/gabor_statistics.h"
 #include "models/gabor/gabor_texture.h"
 
 #include <cmath>
@@ -48,12 +47,6 @@ GaborShaderData gabor_shader_data(const TextureDescription& description)
     for (int c = 0; c < 3; ++c) data.sigma_m[c] = gabor_channel_sigma(gabor.weights[c]);
     data.colour = shader_colour_data(description);
     return data;
-}
-
-GaborSphereTable gabor_sphere_table()
-{
-    const SphereAverageTable table = sphere_average_table();
-    return {table.size, table.step, std::vector<float>(table.values.begin(), table.values.end())};
 }
 
 }  // namespace stochtex

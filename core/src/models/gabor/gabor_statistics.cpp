@@ -1,5 +1,6 @@
 #include "models/gabor/gabor_statistics.h"
 #include <stochtex/models/gabor_parameters.h>
+#include <stochtex/models/gabor_shader_data.h>
 
 #include <algorithm>
 #include <array>
@@ -134,10 +135,10 @@ private:
 
 }  // namespace
 
-SphereAverageTable sphere_average_table()
+GaborSphereTable gabor_sphere_table()
 {
     const SphereGaussianTable& table = SphereGaussianTable::get();
-    return {SphereGaussianTable::size, table.step(), table.values()};
+    return {SphereGaussianTable::size, table.step(), std::vector<float>(table.values().begin(), table.values().end())};
 }
 
 double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)

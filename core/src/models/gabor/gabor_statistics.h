@@ -20,8 +20,6 @@
 #include "models/gabor/gabor_kernel.h"
 #include "models/gabor/gabor_noise.h"
 
-#include <vector>
-
 namespace stochtex {
 
 /// e^-x · I₀(x) for x ≥ 0 (Abramowitz & Stegun 9.8.1–2, |error| < 2e-7): bounded where I₀ overflows.
@@ -38,15 +36,7 @@ double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho);
 /// bandwidth), for the solid noise sliced by the plane of `frame` (the 2D noise: the default
 /// frame, the (u, v) plane).
 double gabor_retained_variance(const GaborNoiseParameters& noise, const TangentFrame& frame, const GaborFilter& filter);
-
-/// The table behind the isotropic case of gabor_retained_variance, for re-implementations (the
-/// OSL shader): E over the unit sphere of exp(−α u₁² − β u₂²) at log(1 + α) = i·step,
-/// log(1 + β) = j·step, values[j·size + i], interpolated bilinearly between nodes.
-struct SphereAverageTable {
-    int size = 0;
-    double step = 0;
-    std::vector<double> values;
-};
-SphereAverageTable sphere_average_table();
+// The isotropic case's table is exported, for the OSL shader, as gabor_sphere_table()
+// (stochtex/models/gabor_shader_data.h).
 
 }  // namespace stochtex
