@@ -327,11 +327,8 @@ TEST(OslGaborShader, GeneratedShaderIsSelfContained)
 {
     const std::string dir = test::temp_dir("oslgaborself");
     GaborShim shim(concrete(HistogramMode::automatic), dir);
-    EXPECT_EQ(shim.text.find("#include"), std::string::npos) << "the headers must be inlined";
-    EXPECT_NE(shim.text.find("shader stochtex_test("), std::string::npos);
-    EXPECT_NE(shim.text.find("void stochtex_mix64("), std::string::npos);
-    EXPECT_EQ(shim.text.find("@stochtex-parameters"), std::string::npos);
-    for (char c : shim.text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
+    osl_test::expect_self_contained(shim.text);
+    EXPECT_NE(shim.text.find("void stochtex_mix64("), std::string::npos) << "the nested headers must be inlined too";
 }
 
 // ---- With OSL installed ---------------------------------------------------------------------------
@@ -342,14 +339,7 @@ TEST(OslGaborCompiler, GeneratedShaderCompilesAndTestshadeMatchesCore)
     const std::string dir = test::temp_dir("oslgabortestshade");
     const TextureDescription description = concrete(HistogramMode::on);
     // testshade --center shades pixel centres; the shader's (u, v) = (x, −y) (docs/osl.md).
-    Image core, shaded;
-    std::string log;
-    ASSERT_TRUE(osl_test::run_testshade(GaborShim(description, dir).text, *make_texture(description), dir, 128, 0.25, core,
-                                        shaded, log))
-        << log;
-    const double rms = osl_test::testshade_rms_sigma(core, shaded);
-    std::printf("gabor testshade vs stex render: rms %.2e sigma\n", rms);
-    EXPECT_LT(rms, 0.01);
+    EXPECT_LT(osl_test::testshade_rms("gabor", GaborShim(description, dir).text, *make_texture(description), dir, 128, 0.25), 0.01);
 }
 
 }  // namespace

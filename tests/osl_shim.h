@@ -18,6 +18,7 @@
 #include "test_support.h"
 
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -219,6 +220,31 @@ inline double testshade_rms_sigma(const stochtex::Image& core, const stochtex::I
         worst = std::max(worst, std::sqrt(diff2 / n) / sigma);
     }
     return worst;
+}
+
+/// A generated shader compiles on its own: headers inlined, renamed, parameters filled, ASCII.
+inline void expect_self_contained(const std::string& text)
+{
+    EXPECT_EQ(text.find("#include"), std::string::npos) << "the headers must be inlined";
+    EXPECT_NE(text.find("shader stochtex_test("), std::string::npos);
+    EXPECT_EQ(text.find("@stochtex-parameters"), std::string::npos);
+    for (char c : text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
+}
+
+/// run_testshade, then the pixel RMS in σ (printed with `model`); a failure of oslc or testshade
+/// fails the test and returns infinity.
+inline double testshade_rms(const char* model, const std::string& shader_text, const stochtex::Texture& texture,
+                            const std::string& dir, int size, double scale)
+{
+    stochtex::Image core, shaded;
+    std::string log;
+    if (!run_testshade(shader_text, texture, dir, size, scale, core, shaded, log)) {
+        ADD_FAILURE() << log;
+        return HUGE_VAL;
+    }
+    const double rms = testshade_rms_sigma(core, shaded);
+    std::printf("%s testshade vs stex render: rms %.2e sigma\n", model, rms);
+    return rms;
 }
 
 }  // namespace osl_test

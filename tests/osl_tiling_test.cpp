@@ -221,11 +221,7 @@ TEST(OslTilingShader, ColourMapOutputIsRefusedWithAReason)
 
 TEST(OslTilingShader, GeneratedShaderIsSelfContained)
 {
-    TilingShim shim(colour_tiling(HistogramMode::automatic), test::temp_dir("osltilingself"));
-    EXPECT_EQ(shim.text.find("#include"), std::string::npos) << "the headers must be inlined";
-    EXPECT_NE(shim.text.find("shader stochtex_test("), std::string::npos);
-    EXPECT_EQ(shim.text.find("@stochtex-parameters"), std::string::npos);
-    for (char c : shim.text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
+    osl_test::expect_self_contained(TilingShim(colour_tiling(HistogramMode::automatic), test::temp_dir("osltilingself")).text);
 }
 
 // ---- With OSL installed ---------------------------------------------------------------------------
@@ -235,14 +231,7 @@ TEST(OslTilingCompiler, GeneratedShaderCompilesAndTestshadeMatchesCore)
     if (!test::on_path("oslc") || !test::on_path("testshade")) GTEST_SKIP() << "oslc/testshade not on PATH (Debian packages no OSL): not run";
     const std::string dir = test::temp_dir("osltilingtestshade");
     const TextureDescription description = colour_tiling(HistogramMode::on);
-    Image core, shaded;
-    std::string log;
-    ASSERT_TRUE(osl_test::run_testshade(TilingShim(description, dir).text, *make_texture(description), dir, 128, 0.25, core,
-                                        shaded, log))
-        << log;
-    const double rms = osl_test::testshade_rms_sigma(core, shaded);
-    std::printf("tiling testshade vs stex render: rms %.2e sigma\n", rms);
-    EXPECT_LT(rms, 0.01);
+    EXPECT_LT(osl_test::testshade_rms("tiling", TilingShim(description, dir).text, *make_texture(description), dir, 128, 0.25), 0.01);
 }
 
 }  // namespace
