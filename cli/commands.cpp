@@ -357,7 +357,12 @@ int OslCommand::run() const
     const std::string stem = fs::path(output).stem().string();
     const osl::OslImagePaths written = osl::osl_image_paths(description, folder.string(), stem);
     options.images = osl::osl_image_paths(description, tile_dir.empty() ? folder.string() : tile_dir, stem);
-    const std::string text = osl::make_osl_shader(description, options);
+    std::string text;
+    try {
+        text = osl::make_osl_shader(description, options);
+    } catch (const Error& e) {
+        throw Error(texture + ": " + e.what());  // which texture has no OSL form
+    }
     osl::write_osl_images(description, written);
     write_file_atomically(output, text);
     std::string images;
