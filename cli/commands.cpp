@@ -351,18 +351,25 @@ int OslCommand::run() const
     options.shader_name = name.empty() ? osl::osl_shader_name_from_path(output) : name;
     const TextureDescription description = read_stex(texture);
     options.source_name = fs::path(texture).filename().string();
-    // The tiles go beside the shader; the shader names them by absolute path unless --tile-dir
-    // says where the renderer will find them.
+    // The images go beside the shader; the shader names them by absolute path unless
+    // --tile-dir says where the renderer will find them.
     const fs::path folder = fs::absolute(fs::path(output)).parent_path();
-    const fs::path tile_2d = folder / "stochtex_noise_2d.exr", tile_3d = folder / "stochtex_noise_3d.exr";
-    const fs::path shown = tile_dir.empty() ? folder : fs::path(tile_dir);
-    options.tile_2d_path = (shown / tile_2d.filename()).string();
-    options.tile_3d_path = (shown / tile_3d.filename()).string();
-    const std::string text = osl::make_osl_shader(description, options);
-    osl::write_noise_tiles(tile_2d.string(), tile_3d.string());
+    const std::string stem = fs::path(output).stem().string();
+    const osl::OslImagePaths written = osl::osl_image_paths(description, folder.string(), stem);
+    options.images = osl::osl_image_paths(description, tile_dir.empty() ? folder.string() : tile_dir, stem);
+    std::string text;
+    try {
+        text = osl::make_osl_shader(description, options);
+    } catch (const Error& e) {
+        throw Error(texture + ": " + e.what());  // which texture has no OSL form
+    }
+    osl::write_osl_images(description, written);
     write_file_atomically(output, text);
-    std::printf("wrote %s (shader %s, %zu bytes) and its noise tiles %s, %s\n", output.c_str(),
-                options.shader_name.c_str(), text.size(), tile_2d.c_str(), tile_3d.c_str());
+    std::string images;
+    for (const std::string* path : {&written.tile_2d, &written.tile_3d, &written.sphere_table, &written.moments})
+        if (!path->empty()) images += (images.empty() ? "" : ", ") + *path;
+    std::printf("wrote %s (shader %s, %zu bytes) and the images it reads: %s\n", output.c_str(),
+                options.shader_name.c_str(), text.size(), images.c_str());
     return 0;
 }
 

@@ -126,11 +126,11 @@ int main(int argc, char** argv)
         ->check(positive_number())->capture_default_str();
 
     OslCommand osl;
-    auto* o = app.add_subcommand("osl", "Write an OSL shader with the texture's parameters built in (and the noise tiles it reads)");
+    auto* o = app.add_subcommand("osl", "Write an OSL shader with the texture's parameters built in (wavelet, gabor, tiling) and the images it reads");
     o->add_option("texture", osl.texture, ".stex file")->required();
-    o->add_option("-o,--output", osl.output, "Output shader (.osl); stochtex_noise_2d.exr and _3d.exr are written beside it")->required();
+    o->add_option("-o,--output", osl.output, "Output shader (.osl); the images it reads are written beside it (docs/osl.md)")->required();
     o->add_option("--name", osl.name, "Shader name (default: stochtex_ + the output file's name)");
-    o->add_option("--tile-dir", osl.tile_dir, "Folder the shader names for the noise tiles (default: the output's folder, absolute)");
+    o->add_option("--tile-dir", osl.tile_dir, "Folder the shader names for the images it reads (default: the output's folder, absolute)");
 
     PovCommand pov;
     auto* p = app.add_subcommand("pov", "Write a POV-Ray 3.7 include: the texture as SDL (procedural) or a baked tileable EXR");

@@ -14,13 +14,11 @@
 #ifndef STOCHTEX_WAVELET_H
 #define STOCHTEX_WAVELET_H
 
-#ifndef STOCHTEX_OUT
-#define STOCHTEX_OUT(type) output type
-#endif
+#include "stochtex_subset.h"
+
+#include "stochtex_colour.h"
 
 #define STOCHTEX_MAX_BANDS 24
-#define STOCHTEX_MAX_KNOTS 64
-#define STOCHTEX_GH_COUNT 12
 
 // Band clamping (core/src/band_filter.h): band j is kept whole while the footprint is at most
 // 2^j exemplar pixels, removed from 2^(j+1), faded by a smoothstep in log2 in between.
@@ -135,24 +133,6 @@ float stochtex_major_axis_3d(float nx, float ny, float nz, float ax, float ay, f
                                          tbx * tbx + tby * tby + tbz * tbz);
 }
 
-// Channel c's histogram map f_c: the monotone cubic Hermite through its knots, clamped at the ends.
-float stochtex_histogram_map(float z, int c, int n, float knot_z[], float knot_value[], float knot_slope[])
-{
-    int base = c * STOCHTEX_MAX_KNOTS;
-    if (z <= knot_z[base])
-        return knot_value[base];
-    if (z >= knot_z[base + n - 1])
-        return knot_value[base + n - 1];
-    int i = 0;
-    while (i + 2 < n && z >= knot_z[base + i + 1])
-        i += 1;
-    float h = knot_z[base + i + 1] - knot_z[base + i];
-    float s = (z - knot_z[base + i]) / h;
-    float s2 = s * s, s3 = s2 * s;
-    return (2.0 * s3 - 3.0 * s2 + 1.0) * knot_value[base + i] + (s3 - 2.0 * s2 + s) * h * knot_slope[base + i] +
-           (-2.0 * s3 + 3.0 * s2) * knot_value[base + i + 1] + (s3 - s2) * h * knot_slope[base + i + 1];
-}
-
 // The texture at point (x, y, z) in texture units (2D: z unused), footprint_px exemplar pixels
 // wide. Arrays are flattened: weight[c * MAX_BANDS + j], offset[(c * MAX_BANDS + j) * 3 + axis],
 // knots[c * MAX_KNOTS + k] with knot_count[c] knots (0: no histogram map).
@@ -188,22 +168,10 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
         float sigma = sigma_m[c];
         float zc = sigma > 0.0 ? gain * kept / sigma : 0.0;
         float dropped = sigma > 0.0 ? sqrt(dropped_variance * sigma_n2) / sigma : 0.0;
-        if (knot_count[c] == 0) {
-            y_channel[c] = zc * sigma;
-        } else if (dropped < 1e-4) {
-            y_channel[c] = stochtex_histogram_map(zc, c, knot_count[c], knot_z, knot_value, knot_slope);
-        } else {
-            // E[f(z + sigma_d Z)]: the filtered value of a non-linear map (docs/models/wavelet.md).
-            float sum = 0.0;
-            for (int i = 0; i < STOCHTEX_GH_COUNT; ++i)
-                sum += gh_weight[i] *
-                       stochtex_histogram_map(zc + dropped * gh_node[i], c, knot_count[c], knot_z, knot_value, knot_slope);
-            y_channel[c] = sum;
-        }
+        y_channel[c] = stochtex_channel_value(zc, dropped, c, sigma_m, knot_count, knot_z, knot_value, knot_slope,
+                                              gh_node, gh_weight);
     }
-    r = mean[0] + basis[0] * y_channel[0] + basis[1] * y_channel[1] + basis[2] * y_channel[2];
-    g = mean[1] + basis[3] * y_channel[0] + basis[4] * y_channel[1] + basis[5] * y_channel[2];
-    b = mean[2] + basis[6] * y_channel[0] + basis[7] * y_channel[1] + basis[8] * y_channel[2];
+    stochtex_colour_basis(y_channel[0], y_channel[1], y_channel[2], mean, basis, r, g, b);
 }
 
 #endif

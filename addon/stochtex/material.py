@@ -101,8 +101,10 @@ def build_material(material, settings, name, image=None, period_m=1.0, osl_text=
         node = nodes.new("ShaderNodeScript")
         node.mode = "INTERNAL"
         node.script = osl_text
-        if "Solid" in node.inputs:  # sockets exist once Blender has compiled the script
+        # Sockets exist once Blender has compiled the script; the tiling shader has no Solid.
+        if "Solid" in node.inputs:
             node.inputs["Solid"].default_value = 1 if settings.solid else 0
+        if "Scale" in node.inputs:
             scale = 1.0 / unit_size_m if _coordinates(settings) == "OBJECT" else settings.uv_repeats
             node.inputs["Scale"].default_value = scale
         if "Vector" in node.inputs:

@@ -210,15 +210,16 @@ def _finish_render(self, context, mat, settings, name, stex_text_content):
     data = stex_cli.parse_stex(stex_text_content, name)
     unit_size_m = float(data["scale"]["unit_size_m"])
     if settings.route == "OSL":
-        # The shader names its noise tiles by absolute path: keep them beside the blend (or in a
-        # folder that outlives this operation).
+        # The shader names the images it reads (noise tiles, tables, moment maps) by absolute
+        # path: keep them beside the blend (or in a folder that outlives this operation).
         folder = bpy.path.abspath("//stochtex") if bpy.data.filepath else os.path.join(
             bpy.app.tempdir or self.work.path, "stochtex")
         os.makedirs(folder, exist_ok=True)
-        for tile in ("stochtex_noise_2d.exr", "stochtex_noise_3d.exr"):
-            shutil.copyfile(self.work.file(tile), os.path.join(folder, tile))
         with open(self.work.file(name + ".osl")) as source:
-            shader = source.read().replace(self.work.path, folder)
+            shader = source.read()
+        for image in stex_cli.shader_images(shader):
+            shutil.copyfile(image, os.path.join(folder, os.path.basename(image)))
+        shader = shader.replace(self.work.path, folder)
         osl_text = _store_text(name + ".osl", shader, bpy.data.texts.get(name + ".osl"))
         context.scene.cycles.shading_system = True
         material.build_material(mat, settings, name, osl_text=osl_text, unit_size_m=unit_size_m)

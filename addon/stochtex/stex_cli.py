@@ -12,6 +12,7 @@ error message, not a lost scene. The CLI's option names are already a stable pub
 """
 
 import json
+import re
 import os
 import shutil
 import subprocess
@@ -71,6 +72,11 @@ def solid_bake_args(texture, output, positions, units_per_position):
 
 def osl_args(texture, output):
     return ["osl", texture, "-o", output]
+
+
+def shader_images(shader_text):
+    """The image files a shader written by `stex osl` reads (its string parameters ending in .exr)."""
+    return re.findall(r'^    string \w+ = "([^"]+\.exr)",$', shader_text, re.MULTILINE)
 
 
 def morph_args(a, b, t, output):

@@ -108,7 +108,13 @@ class StexCliTest(unittest.TestCase):
         shader = os.path.join(self.dir, "t.osl")
         stex_cli.run(self.stex, stex_cli.osl_args(morphed, shader))
         with open(shader) as f:
-            self.assertIn("shader stochtex_t(", f.read())
+            text = f.read()
+        self.assertIn("shader stochtex_t(", text)
+        # The images the add-on copies beside the blend: the wavelet shader's two noise tiles.
+        images = stex_cli.shader_images(text)
+        self.assertEqual(sorted(os.path.basename(p) for p in images), ["stochtex_noise_2d.exr", "stochtex_noise_3d.exr"])
+        for path in images:
+            self.assertTrue(os.path.isfile(path), path)
 
 
 class PureTest(unittest.TestCase):

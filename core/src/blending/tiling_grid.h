@@ -48,6 +48,8 @@ public:
     TileBlend blend(double x, double y) const;
     /// The edges actually used along x and y (differ from `edge` only in the periodic form).
     const std::array<double, 2>& edges() const { return edge_; }
+    /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
+    std::uint32_t seed() const { return seed_; }
 
 private:
     /// The offset and the period shift of vertex (i, j).

@@ -14,9 +14,10 @@
 //                  else Σ_i gh_weight[i] · f_c(z_c + dropped_c · gh_node[i]), z_c = kept_c / sigma_m[c]
 //                  (f_c the monotone cubic Hermite through (z, value) with tangents `slope`,
 //                  clamped to the end values; one plain f_c(z_c) when dropped_c < 1e-4)
-//   rgb          = mean + basis · y
+//   rgb          = mean + basis · y   (colour: shader_colour_data.h)
 #pragma once
 
+#include <stochtex/models/shader_colour_data.h>
 #include <stochtex/texture_description.h>
 
 #include <array>
@@ -33,13 +34,7 @@ struct WaveletShaderData {
     std::array<std::vector<double>, 3> weight;               ///< [c][j]
     std::vector<double> scale;                               ///< [j]: texture units → lattice units
     std::array<std::vector<std::array<double, 3>>, 3> offset;  ///< [c][j]: lattice units (x, y, z)
-    std::array<double, 3> mean{};
-    std::array<std::array<double, 3>, 3> basis{};            ///< basis[row][column]
-    struct HistogramCurve {
-        std::vector<double> z, value, slope;  ///< empty: the channel stays Gaussian
-    };
-    std::array<HistogramCurve, 3> histogram;
-    std::vector<double> gh_node, gh_weight;  ///< E[f(Z)] ≈ Σ weight_i f(node_i), Z ~ N(0, 1)
+    ShaderColourData colour;  ///< histogram maps, Gauss–Hermite rule, colour basis and mean
 };
 
 /// Throws Error if the description is invalid or it is not a wavelet texture.

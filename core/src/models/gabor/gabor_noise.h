@@ -88,6 +88,14 @@ public:
     /// Cell sides: one impulse per cell (2D: cell_size_2d[0] × [1]).
     std::array<double, 2> cell_size_2d() const { return {cell_x_, cell_y_}; }
     double cell_size_3d() const { return cell_3d_; }
+    /// For re-implementations of the noise (gabor_shader_data.h): the mixed seeds of the 2D and
+    /// solid cell keys, the gains (1 / σ of the raw sums), the hybrid kind's frequency plane.
+    std::uint64_t key_2d() const { return key_2d_; }
+    std::uint64_t key_3d() const { return key_3d_; }
+    double gain_2d() const { return gain_2d_; }
+    double gain_3d() const { return gain_3d_; }
+    const Vec3& plane_e1() const { return plane_e1_; }
+    const Vec3& plane_e2() const { return plane_e2_; }
 
 private:
     struct Batch;

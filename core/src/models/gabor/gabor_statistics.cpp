@@ -1,5 +1,6 @@
 #include "models/gabor/gabor_statistics.h"
 #include <stochtex/models/gabor_parameters.h>
+#include <stochtex/models/gabor_shader_data.h>
 
 #include <algorithm>
 #include <array>
@@ -115,8 +116,11 @@ public:
         return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) + fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
     }
 
-private:
     static constexpr int size = 97;
+    double step() const { return step_; }
+    const std::vector<double>& values() const { return values_; }
+
+private:
     SphereGaussianTable() : step_(std::log1p(1e6) / (size - 1)), values_(std::size_t(size) * size)
     {
         for (int j = 0; j < size; ++j)
@@ -130,6 +134,12 @@ private:
 };
 
 }  // namespace
+
+GaborSphereTable gabor_sphere_table()
+{
+    const SphereGaussianTable& table = SphereGaussianTable::get();
+    return {SphereGaussianTable::size, table.step(), std::vector<float>(table.values().begin(), table.values().end())};
+}
 
 double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
 {

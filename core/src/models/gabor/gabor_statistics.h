@@ -36,5 +36,7 @@ double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho);
 /// bandwidth), for the solid noise sliced by the plane of `frame` (the 2D noise: the default
 /// frame, the (u, v) plane).
 double gabor_retained_variance(const GaborNoiseParameters& noise, const TangentFrame& frame, const GaborFilter& filter);
+// The isotropic case's table is exported, for the OSL shader, as gabor_sphere_table()
+// (stochtex/models/gabor_shader_data.h).
 
 }  // namespace stochtex

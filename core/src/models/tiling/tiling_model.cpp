@@ -20,6 +20,7 @@ ModelInfo tiling_info()
                    "moment-filtered: any texture a crop shows, structure included; colour-mapped and phasor noise";
     info.doc = "docs/models/tiling.md";
     info.capabilities.analysis = true;
+    info.capabilities.osl = true;  // colour and normal_map outputs; colour_map has no transcription
     return info;
 }
 

@@ -3,8 +3,6 @@
 #include <stochtex/models/wavelet_shader_data.h>
 #include <stochtex/models/wavelet_parameters.h>
 
-#include "colour/gaussian.h"
-#include "colour/histogram_map.h"
 #include "models/wavelet/wavelet_noise.h"
 #include "models/wavelet/wavelet_texture.h"
 
@@ -36,17 +34,7 @@ WaveletShaderData wavelet_shader_data(const TextureDescription& description)
             data.offset[c].push_back({band.offset[0], band.offset[1], band.offset[2]});
         }
     }
-    data.mean = description.mean;
-    data.basis = description.basis;
-    for (int c = 0; c < 3; ++c) {
-        const HistogramMap& map = description.histograms[c];
-        if (!map.enabled()) continue;
-        const MonotoneCubic curve(map.z, map.value);
-        data.histogram[c] = {map.z, map.value, curve.slopes()};
-    }
-    const GaussHermite& rule = GaussHermite::standard_normal();
-    data.gh_node.assign(rule.node.begin(), rule.node.end());
-    data.gh_weight.assign(rule.weight.begin(), rule.weight.end());
+    data.colour = shader_colour_data(description);
     return data;
 }
 

@@ -1,9 +1,11 @@
 // stochtex — OSL shaders from a texture description (`stex osl`; docs/osl.md).
 //
-// The shader is osl/stochtex_wavelet.osl with osl/stochtex_wavelet.h inlined and the texture's
-// numbers (core: wavelet_shader_data.h) as its parameters' defaults: one self-contained file.
-// It reads two noise tiles (the core's Cook–DeRose coefficients) with closest-texel texture()
-// lookups; write_noise_tiles() writes them.
+// A model with an OSL form (its registry capability `osl`: wavelet, gabor, tiling) has a shader
+// template osl/stochtex_<model>.osl over a header of its maths osl/stochtex_<model>.h; the
+// generated shader is the template with the headers inlined and the texture's numbers (the
+// core's <model>_shader_data.h) as its parameters' defaults: one self-contained file. It reads a
+// few images with closest-texel texture() lookups — wavelet: two noise tiles; gabor: the
+// sphere-average table; tiling: the exemplar's moment pyramid — which write_osl_images() writes.
 #pragma once
 
 #include <stochtex/texture_description.h>
@@ -16,25 +18,42 @@ namespace stochtex::osl {
 /// OIIO plugin, or a baked map).
 bool has_osl_form(const std::string& model);
 
-struct OslShaderOptions {
-    std::string shader_name;   ///< an OSL identifier; validated
-    std::string tile_2d_path;  ///< as written into the shader (absolute, or as the renderer resolves it)
-    std::string tile_3d_path;
-    std::string source_name;   ///< the .stex file's name, for the header comment
+/// The images a shader reads, as written into it (absolute, or as the renderer resolves them);
+/// a model uses some of them, the others stay empty.
+struct OslImagePaths {
+    std::string tile_2d, tile_3d;  ///< wavelet: the noise tiles (stochtex_noise_2d.exr, _3d.exr)
+    std::string sphere_table;      ///< gabor: the retained-variance table (stochtex_gabor_sphere.exr)
+    std::string moments;           ///< tiling: the moment pyramid (<shader>_moments.exr)
 };
 
-/// Throws Error for a model without an OSL form or an invalid shader name.
+/// The paths of the images a description's shader reads, in `folder`; `shader_stem` names the
+/// texture-specific ones (the shared noise tiles and table keep their fixed names).
+OslImagePaths osl_image_paths(const TextureDescription& description, const std::string& folder,
+                              const std::string& shader_stem);
+
+struct OslShaderOptions {
+    std::string shader_name;  ///< an OSL identifier; validated
+    OslImagePaths images;     ///< as written into the shader
+    std::string source_name;  ///< the .stex file's name, for the header comment
+};
+
+/// Throws Error for a model without an OSL form (or a tiling texture with a colour map), or an
+/// invalid shader name.
 std::string make_osl_shader(const TextureDescription& description, const OslShaderOptions& options);
+
+/// Writes the images the description's shader reads at these paths (single- or multi-channel
+/// float EXR, scanline, no MIP levels: the shaders read single texels), each through the
+/// safe-write helper (a failed write keeps the previous file). Throws Error on failure.
+void write_osl_images(const TextureDescription& description, const OslImagePaths& files);
 
 /// A valid shader name from a file name ("out/rust 2.osl" → "stochtex_rust_2").
 std::string osl_shader_name_from_path(const std::string& path);
 
-/// Writes the 2D tile (size² texels) and the 3D tile as an atlas of 8 × 8 slices, single-channel
-/// float EXR, scanline (no MIP levels: the shader reads single texels). Throws Error on failure.
+/// Writes the wavelet noise tiles: the 2D tile (size² texels) and the 3D tile as an atlas of
+/// 8 × 8 slices.
 void write_noise_tiles(const std::string& path_2d, const std::string& path_3d);
 
-/// The shaders' sources, as built into this program (osl/*.osl, osl/*.h).
-const std::string& wavelet_shader_source();
-const std::string& wavelet_header_source();
+/// A shader source file as built into this program (osl/*.osl, osl/*.h, by file name).
+const std::string& shader_source(const std::string& file);
 
 }  // namespace stochtex::osl
