@@ -13,8 +13,9 @@
 // colour_map the same photo twice through the "rgb" map, phasor "phasor-square" at 1/16 cycle per
 // pixel (covariance filtering), ptm 256² random lrgb reflectance functions lit 40° off the
 // normal (ptm_unbounded: the same, tiled and blended).
-// Mpix/s = million filtered evaluations per second. After the table, each raster path's speed-up
-// over its reference.
+// Mpix/s = million filtered evaluations per second of wall time; Mpix/cpu-s = per second of CPU
+// time of the whole process (what a core does while it runs: the figure to read on a machine
+// shared with other jobs). After the table, each raster path's speed-up over its reference.
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
 #include <stochtex/image.h>
@@ -25,6 +26,8 @@
 #include <stochtex/models/tiling.h>
 
 #include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
 
 #include "median_reporter.h"
 #include "colour/tabulated_colour_mapping.h"
@@ -112,15 +115,26 @@ std::string label(const std::string& kind, const std::string& path, int threads)
            " thread(s)";
 }
 
+/// CPU seconds of the whole process (every thread): on a machine shared with other jobs, pixels
+/// per CPU second say what a core does when it runs, whatever the wall clock waited.
+double process_cpu_seconds()
+{
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) + 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 void Render(benchmark::State& state, const std::string& kind, bool raster)
 {
     const std::unique_ptr<Texture> texture = make_texture(description(kind));
     const PointByPoint reference(*texture);
     const Texture& evaluated = raster ? *texture : static_cast<const Texture&>(reference);
     const RenderSettings settings = settings_for(*texture, int(state.range(0)));
+    const double cpu_start = process_cpu_seconds();
     for (auto _ : state) benchmark::DoNotOptimize(render(evaluated, settings).pixels.data());
-    state.counters["Mpix/s"] =
-        benchmark::Counter(double(settings.width) * settings.height * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+    const double pixels = double(settings.width) * settings.height;
+    state.counters["Mpix/s"] = benchmark::Counter(pixels * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["Mpix/cpu-s"] = pixels * 1e-6 * double(state.iterations()) / std::max(1e-9, process_cpu_seconds() - cpu_start);
     state.SetLabel(label(kind, raster ? "eval_region" : "eval() per pixel", int(state.range(0))));
 }
 
@@ -189,22 +203,44 @@ BENCHMARK_CAPTURE(Part, phasor/colour, std::string("phasor"), true)->UseRealTime
 
 class ComparingReporter : public bench::MedianReporter {
 public:
-    explicit ComparingReporter(OutputOptions options) : MedianReporter({"Mpix/s"}, options) {}
+    explicit ComparingReporter(OutputOptions options) : MedianReporter({"Mpix/s"}, options), cpu_(std::make_unique<CpuRates>()) {}
+
+    void ReportRuns(const std::vector<Run>& reports) override
+    {
+        MedianReporter::ReportRuns(reports);
+        for (const Run& run : reports) {
+            if (run.error_occurred || (run.run_type == Run::RT_Aggregate && run.aggregate_name != "median")) continue;
+            const auto counter = run.counters.find("Mpix/cpu-s");
+            if (counter != run.counters.end()) cpu_->rates[run.run_name.str()] = counter->second.value;
+        }
+    }
 
     void Finalize() override
     {
         ConsoleReporter::Finalize();
-        std::printf("\nComparison (medians of this run, Mpix/s):\n");
+        std::printf("\nComparison (medians of this run; Mpix/s of wall time, and per CPU second):\n");
         for (const auto& [name, entry] : medians()) {
-            std::printf("  %-40s %9.3f", name.c_str(), entry.rate);
+            std::printf("  %-48s %9.3f", name.c_str(), entry.rate);
+            const auto cpu = cpu_->rates.find(name);
+            if (cpu != cpu_->rates.end()) std::printf("  (%7.3f per CPU-s)", cpu->second);
             if (name.rfind("Render/Raster/", 0) == 0) {
-                const Entry* reference = find("Render/Point/" + name.substr(std::strlen("Render/Raster/")));
-                if (reference && reference->rate > 0) std::printf("  %7.2fx eval() per pixel", entry.rate / reference->rate);
+                const std::string twin = "Render/Point/" + name.substr(std::strlen("Render/Raster/"));
+                const Entry* reference = find(twin);
+                const auto reference_cpu = cpu_->rates.find(twin);
+                if (reference && reference->rate > 0) std::printf("  %6.2fx eval() per pixel", entry.rate / reference->rate);
+                if (cpu != cpu_->rates.end() && reference_cpu != cpu_->rates.end() && reference_cpu->second > 0)
+                    std::printf(" (%.2fx per CPU-s)", cpu->second / reference_cpu->second);
             }
             std::printf("\n");
         }
         std::fflush(stdout);
     }
+
+private:
+    struct CpuRates {
+        std::map<std::string, double> rates;
+    };
+    std::unique_ptr<CpuRates> cpu_;
 };
 
 }  // namespace

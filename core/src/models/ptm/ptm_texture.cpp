@@ -98,6 +98,9 @@ PtmTexture::PtmTexture(const TextureDescription& description, const Vec2* period
 
 void PtmTexture::add_texel(const Level& level, int x, int y, double weight, double* sum) const
 {
+    // A zero weight adds ±0 to every (finite) sum, which changes no bit: skip the texel (a raster
+    // aligned with the level's texels, as every MIP level and plugin tile is, reads one of four).
+    if (weight == 0) return;
     const float* texel = &level.functions[(std::size_t(y) * level.width + x) * floats_per_texel];
     for (int k = 0; k < floats_per_texel; ++k) sum[k] += weight * texel[k];
 }
@@ -174,9 +177,14 @@ Rgb PtmTexture::lit(const std::array<legendre::Terms, 3>& functions) const
 
 Rgb PtmTexture::lit(const double* sum) const
 {
-    std::array<legendre::Terms, 3> functions;
-    for (int c = 0; c < 3; ++c) std::copy_n(sum + c * legendre::term_count, legendre::term_count, functions[c].begin());
-    return lit(functions);
+    // lit(functions) without the copies: legendre::dot's sum, k = 0 … 5, per channel.
+    Rgb rgb{};
+    for (int c = 0; c < 3; ++c) {
+        double value = 0;
+        for (int k = 0; k < legendre::term_count; ++k) value += sum[c * legendre::term_count + k] * basis_[k];
+        rgb[c] = float(std::max(0.0, value));
+    }
+    return rgb;
 }
 
 Rgb PtmTexture::eval(const Vec2& uv, const Footprint2D& footprint) const

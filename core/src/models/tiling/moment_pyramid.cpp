@@ -89,6 +89,10 @@ MomentPyramid::MomentPyramid(const std::vector<std::vector<double>>& planes, int
             }
         levels_.push_back(std::move(coarse));
     }
+    for (Level& level : levels_) {
+        level.scale_x = double(level.width) / width;
+        level.scale_y = double(level.height) / height;
+    }
 }
 
 Moments MomentPyramid::texel(int level, int x, int y) const
@@ -140,7 +144,8 @@ void MomentPyramid::sample_level_linear(int level, double x, double y, double* m
     // and wrap give).
     constexpr int n_pairs = Channels * (Channels + 1) / 2, record = Channels + n_pairs;
     const Level& l = levels_[std::size_t(level)];
-    const double lx = x * l.width / width() - 0.5, ly = y * l.height / height() - 0.5;
+    // x · l.width / width() with the ratio (a power of two: exact, so the same double) taken once.
+    const double lx = x * l.scale_x - 0.5, ly = y * l.scale_y - 0.5;
     const double x0 = floor_exact(lx), y0 = floor_exact(ly);
     const double tx = lx - x0, ty = ly - y0;
     const std::int64_t mask_x = l.width - 1, mask_y = l.height - 1;

@@ -74,6 +74,7 @@ private:
         // Per texel one record: the channels' means, then the upper triangle of the symmetric
         // moments (a lookup reads one record, not two arrays).
         std::vector<double> data;
+        double scale_x = 1, scale_y = 1;  // texels of this level per level-0 pixel (powers of two)
     };
     Moments unpack(const Level& level, std::size_t texel) const;
     void pack(const Moments& moments, Level& level, std::size_t texel) const;
