@@ -197,9 +197,9 @@ Rgb PtmTexture::eval_solid(const SurfacePoint& point) const
     return lit(functions({point.p[0], point.p[1]}, point.major_axis()));
 }
 
-void PtmTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
+void PtmTexture::eval_raster(const RasterRegion& region, double footprint_units, const RgbOutput& out) const
 {
-    const Detail d = detail(region.footprint.major_axis());
+    const Detail d = detail(footprint_units);
     TileCache cache;
     double sum[floats_per_texel];
     for (int j = 0; j < region.height; ++j)
@@ -209,21 +209,19 @@ void PtmTexture::eval_region(const RasterRegion& region, const RgbOutput& out) c
         }
 }
 
+void PtmTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
+{
+    eval_raster(region, region.footprint.major_axis(), out);
+}
+
 void PtmTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
 {
-    // eval_solid() projects on (u, v): the slice is the 2D raster at the surface point's footprint.
-    const RasterRegion& plane = region.plane;
+    // eval_solid() projects on (u, v): the slice is the 2D raster, filtered at the footprint of
+    // its surface points (normal +w) as eval_solid() measures it.
     SurfacePoint point;
-    point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
-    point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
-    const Detail d = detail(point.major_axis());
-    TileCache cache;
-    double sum[floats_per_texel];
-    for (int j = 0; j < plane.height; ++j)
-        for (int i = 0; i < plane.width; ++i) {
-            function_sum({plane.u(i), plane.v(j)}, d, cache, sum);
-            out.set(std::size_t(j) * plane.width + i, lit(sum));
-        }
+    point.dpdx = {region.plane.footprint.dudx, region.plane.footprint.dvdx, 0};
+    point.dpdy = {region.plane.footprint.dudy, region.plane.footprint.dvdy, 0};
+    eval_raster(region.plane, point.major_axis(), out);
 }
 
 }  // namespace stochtex

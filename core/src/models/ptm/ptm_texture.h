@@ -84,6 +84,8 @@ private:
     void function_sum(const Vec2& uv, const Detail& detail, TileCache& cache, double* sum) const;
     Rgb lit(const std::array<legendre::Terms, 3>& functions) const;
     Rgb lit(const double* sum) const;
+    /// The region's pixels lit, filtered at one footprint (texture units).
+    void eval_raster(const RasterRegion& region, double footprint_units, const RgbOutput& out) const;
 
     std::vector<Level> levels_;
     legendre::Terms basis_{};
