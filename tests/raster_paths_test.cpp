@@ -9,7 +9,6 @@
 
 #include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_texture.h"
-#include "models/model.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>

@@ -92,6 +92,9 @@ std::vector<ThroughputResult> measure_throughput(const TextureDescription& descr
     if (s.repetitions < 1 || s.repetitions > 100) throw Error("bench: --repetitions must be in [1, 100]");
     const int threads = thread_count(s.threads);
     const std::unique_ptr<Texture> texture = make_texture(description);
+    // Built first, so that a bad tile size is reported before anything is timed.
+    const ImageLayout layout{s.size, s.size, s.tile, s.tile, s.scale, "RGB"};
+    const MipImage image(description, layout, "bench");
     const double pixels = double(s.size) * s.size;
     const std::string raster = std::to_string(s.size) + "², " + number_text(s.scale) + " exemplar px per pixel, filtered, " +
                                std::to_string(threads) + " thread(s)";
@@ -112,8 +115,6 @@ std::vector<ThroughputResult> measure_throughput(const TextureDescription& descr
     }));
 
     // The plugin's route: one period as a MipImage, level 0 filled tile by tile.
-    const ImageLayout layout{s.size, s.size, s.tile, s.tile, s.scale, "RGB"};
-    const MipImage image(description, layout, "bench");
     const int tiles_x = (s.size + s.tile - 1) / s.tile, tiles = tiles_x * tiles_x;
     results.push_back(timed("plugin tiles",
                             "MipImage::fill (the OIIO plugin's tile path), level 0 in " + std::to_string(s.tile) + "² tiles, " +
