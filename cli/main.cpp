@@ -1,4 +1,5 @@
 // stex — the stochtex command-line tool. See `stex --help` and README.md.
+#include "bench_command.h"
 #include "commands.h"
 #include "progress_bar.h"
 #include "ptm_commands.h"
@@ -148,6 +149,7 @@ int main(int argc, char** argv)
     ml->add_flag("--json", models.json, "Machine-readable: the registry as JSON (name, summary, capabilities, parameters, options)");
     ml->add_flag("--markdown", models.markdown, "Each model's .stex parameter table, as in docs/stex-format.md");
 
+    const BenchCommand bench(app);
     const PtmCommands ptm(app);
     const TilingCommands tiling(app);
 
@@ -159,7 +161,7 @@ int main(int argc, char** argv)
     set_progress_lines(progress_lines);
     install_signal_handlers();
     if (app.get_subcommands().empty()) {
-        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, ptm, tiling); see stex --help\n");
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, bench, ptm, tiling); see stex --help\n");
         return 1;
     }
     try {
@@ -172,6 +174,7 @@ int main(int argc, char** argv)
         if (*b) return bake.run();
         if (*o) return osl.run();
         if (*ml) return models.run();
+        if (bench.selected()) return bench.run();
         if (ptm.selected()) return ptm.run();
         if (tiling.selected()) return tiling.run();
     } catch (const std::exception& e) {

@@ -241,6 +241,26 @@ TEST_F(Cli, ExrWithNanIsAnError)
 
 // ---- Bad textures -------------------------------------------------------------------------------
 
+TEST_F(Cli, BenchMeasuresEveryRouteAgainstTheBakedReference)
+{
+    const RunResult r = stex({"bench", texture.string(), "--size", "32", "--repetitions", "1", "--threads", "2", "--tile", "16"});
+    ASSERT_TRUE(r.exited && r.code == 0) << r;
+    for (const char* route : {"model wavelet", "2D raster", "solid slice", "plugin tiles", "baked lookup (cold)", "baked lookup (warm)",
+                              "x baked warm", "MipImage::fill", "2 thread(s)"})
+        EXPECT_TRUE(contains(r.out, route)) << "'" << route << "' missing from\n" << r;
+}
+
+TEST_F(Cli, BenchOfABadTextureNamesIt)
+{
+    const fs::path garbage = dir / "garbage.stex";
+    write_file(garbage, "not json");
+    expect_error_naming(stex({"bench", garbage.string(), "--size", "32"}), "garbage.stex");
+    const RunResult r = stex({"bench", texture.string(), "--size", "8"});
+    ASSERT_TRUE(r.exited) << r;
+    EXPECT_NE(r.code, 0) << r;
+    EXPECT_TRUE(contains(r.err, "--size")) << r;
+}
+
 TEST_F(Cli, GarbageStexIsAnError)
 {
     const fs::path garbage = dir / "garbage.stex";

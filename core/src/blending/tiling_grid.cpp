@@ -1,5 +1,6 @@
 #include "blending/tiling_grid.h"
 
+#include "numerics/exact_rounding.h"
 #include "numerics/random.h"
 
 #include <stochtex/error.h>
@@ -53,17 +54,18 @@ void TilingGrid::draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const
 
 std::array<double, 2> tile_position(const TileVertex& vertex, double x, double y, int width, int height)
 {
-    const double shift_x = std::round(vertex.offset[0] * width - (vertex.centre[0] - vertex.period_shift[0]));
-    const double shift_y = std::round(vertex.offset[1] * height - (vertex.centre[1] - vertex.period_shift[1]));
+    const double shift_x = round_exact(vertex.offset[0] * width - (vertex.centre[0] - vertex.period_shift[0]));
+    const double shift_y = round_exact(vertex.offset[1] * height - (vertex.centre[1] - vertex.period_shift[1]));
     return {x - vertex.period_shift[0] + shift_x, y - vertex.period_shift[1] + shift_y};
 }
 
-TileBlend TilingGrid::blend(double x, double y) const
+template <class Draw>
+TileBlend TilingGrid::blend_with(double x, double y, const Draw& draw) const
 {
     // Skew to the lattice basis (1, 0), (½, √3/2): cell = floor, f = barycentric fractions.
     const double gx = x / edge_[0], gy = y / edge_[1];
     const double sy = 2 * gy / sqrt3, sx = gx - 0.5 * sy;
-    const double cx = std::floor(sx), cy = std::floor(sy);
+    const double cx = floor_exact(sx), cy = floor_exact(sy);
     const double fx = sx - cx, fy = sy - cy;
     const std::int64_t i = std::int64_t(cx), j = std::int64_t(cy);
     std::array<std::int64_t, 6> vertices;
@@ -84,6 +86,26 @@ TileBlend TilingGrid::blend(double x, double y) const
         draw(vi, vj, result[k]);
     }
     return result;
+}
+
+TileBlend TilingGrid::blend(double x, double y) const
+{
+    return blend_with(x, y, [this](std::int64_t i, std::int64_t j, TileVertex& vertex) { draw(i, j, vertex); });
+}
+
+TileBlend TilingGrid::blend(double x, double y, TileCache& cache) const
+{
+    return blend_with(x, y, [this, &cache](std::int64_t i, std::int64_t j, TileVertex& vertex) {
+        // Rows of vertices differ by j: 8 per row, 8 rows, so a raster row's band fits.
+        TileCache::Slot& slot = cache.slots_[std::size_t((std::uint64_t(i) & 7) | ((std::uint64_t(j) & 7) << 3))];
+        if (slot.i != i || slot.j != j) {
+            draw(i, j, vertex);
+            slot = {i, j, vertex.offset, vertex.period_shift};
+            return;
+        }
+        vertex.offset = slot.offset;
+        vertex.period_shift = slot.period_shift;
+    });
 }
 
 }  // namespace stochtex

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <climits>
 #include <cstdint>
 
 namespace stochtex {
@@ -38,6 +39,23 @@ using TileBlend = std::array<TileVertex, 3>;
 /// Every tiled model (the tiling noise, the unbounded ptm) addresses its tiles through this.
 std::array<double, 2> tile_position(const TileVertex& vertex, double x, double y, int width, int height);
 
+/// Remembers the offsets the grid drew for recently used vertices (a direct-mapped table of
+/// 64): a raster's neighbouring pixels and taps share their triangles' vertices, and drawing a
+/// vertex (three SplitMix64 rounds) costs more than the rest of its blend. Owned by one thread
+/// (a raster row, a batch); the values are the ones draw() gives, so caching changes no bit.
+class TileCache {
+public:
+    TileCache() { for (Slot& slot : slots_) slot.i = slot.j = INT64_MIN; }
+
+private:
+    friend class TilingGrid;
+    struct Slot {
+        std::int64_t i, j;
+        std::array<double, 2> offset, period_shift;
+    };
+    std::array<Slot, 64> slots_;
+};
+
 class TilingGrid {
 public:
     /// edge: the triangles' edge in exemplar pixels.
@@ -46,6 +64,8 @@ public:
     TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period);
 
     TileBlend blend(double x, double y) const;
+    /// The same blend, the vertices' offsets looked up in (and added to) `cache`.
+    TileBlend blend(double x, double y, TileCache& cache) const;
     /// The edges actually used along x and y (differ from `edge` only in the periodic form).
     const std::array<double, 2>& edges() const { return edge_; }
     /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
@@ -54,6 +74,8 @@ public:
 private:
     /// The offset and the period shift of vertex (i, j).
     void draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const;
+    template <class Draw>
+    TileBlend blend_with(double x, double y, const Draw& draw) const;
 
     std::uint32_t seed_;
     std::array<double, 2> edge_;

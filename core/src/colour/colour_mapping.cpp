@@ -27,8 +27,13 @@ double ColourMapping::map_channel(int c, double z, double dropped_sigma) const
 
 Rgb ColourMapping::to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const
 {
-    double y[3];
+    std::array<double, 3> y;
     for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
+    return combine(y);
+}
+
+Rgb ColourMapping::combine(const std::array<double, 3>& y) const
+{
     Rgb rgb;
     for (int r = 0; r < 3; ++r)
         rgb[r] = float(mean_[r] + basis_[r][0] * y[0] + basis_[r][1] * y[1] + basis_[r][2] * y[2]);

@@ -27,8 +27,14 @@ public:
     /// The expected value of the texture (everything filtered away).
     Rgb mean() const { return to_rgb({0, 0, 0}, {1, 1, 1}); }
 
-private:
+    /// Channel c's filtered value E[f_c(z + σ_d Z)] (to_rgb's first step).
     double map_channel(int c, double z, double dropped_sigma) const;
+    /// Whether channel c has a histogram map (else it stays Gaussian: map_channel is linear).
+    bool has_map(int c) const { return !maps_[c].empty(); }
+    /// to_rgb's second step: the colour of mapped channel values y.
+    Rgb combine(const std::array<double, 3>& y) const;
+
+private:
 
     std::array<double, 3> sigma_m_;
     std::array<MonotoneCubic, 3> maps_;  // empty: channel stays Gaussian

@@ -1,6 +1,7 @@
 #include "models/ptm/ptm_texture.h"
 
 #include "models/ptm/ptm_functions.h"
+#include "numerics/exact_rounding.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/ptm.h>
@@ -66,7 +67,8 @@ PtmTexture::PtmTexture(const TextureDescription& description, const Vec2* period
             for (int x = 0; x < coarse.width; ++x) {
                 double sum[floats_per_texel] = {};
                 for (int j = 0; j < span_y; ++j)
-                    for (int i = 0; i < span_x; ++i) add_texel(fine, 2 * x + i, 2 * y + j, 1.0 / (span_x * span_y), sum);
+                    for (int i = 0; i < span_x; ++i)
+                        add_texel(fine, wrap(2 * x + i, fine.width), wrap(2 * y + j, fine.height), 1.0 / (span_x * span_y), sum);
                 std::copy(sum, sum + floats_per_texel, &coarse.functions[(std::size_t(y) * coarse.width + x) * floats_per_texel]);
             }
         levels_.push_back(std::move(coarse));
@@ -96,55 +98,70 @@ PtmTexture::PtmTexture(const TextureDescription& description, const Vec2* period
 
 void PtmTexture::add_texel(const Level& level, int x, int y, double weight, double* sum) const
 {
-    const float* texel =
-        &level.functions[(std::size_t(wrap(y, level.height)) * level.width + wrap(x, level.width)) * floats_per_texel];
+    // A zero weight adds ±0 to every (finite) sum, which changes no bit: skip the texel (a raster
+    // aligned with the level's texels, as every MIP level and plugin tile is, reads one of four).
+    if (weight == 0) return;
+    const float* texel = &level.functions[(std::size_t(y) * level.width + x) * floats_per_texel];
     for (int k = 0; k < floats_per_texel; ++k) sum[k] += weight * texel[k];
 }
 
 void PtmTexture::bilinear(const Level& level, double x, double y, double* sum, double weight) const
 {
-    // x, y in this level's texels with texel centres at half-integers.
-    const double fx = std::floor(x - 0.5), fy = std::floor(y - 0.5);
+    // x, y in this level's texels with texel centres at half-integers; one floor-modulo per
+    // axis, the neighbour wraps by comparison.
+    const double fx = floor_exact(x - 0.5), fy = floor_exact(y - 0.5);
     const double tx = x - 0.5 - fx, ty = y - 0.5 - fy;
-    const long long ix = (long long)fx, iy = (long long)fy;
-    add_texel(level, int(ix % level.width), int(iy % level.height), weight * (1 - tx) * (1 - ty), sum);
-    add_texel(level, int((ix + 1) % level.width), int(iy % level.height), weight * tx * (1 - ty), sum);
-    add_texel(level, int(ix % level.width), int((iy + 1) % level.height), weight * (1 - tx) * ty, sum);
-    add_texel(level, int((ix + 1) % level.width), int((iy + 1) % level.height), weight * tx * ty, sum);
+    const int x0 = wrap((long long)fx, level.width), y0 = wrap((long long)fy, level.height);
+    const int x1 = x0 + 1 == level.width ? 0 : x0 + 1, y1 = y0 + 1 == level.height ? 0 : y0 + 1;
+    add_texel(level, x0, y0, weight * (1 - tx) * (1 - ty), sum);
+    add_texel(level, x1, y0, weight * tx * (1 - ty), sum);
+    add_texel(level, x0, y1, weight * (1 - tx) * ty, sum);
+    add_texel(level, x1, y1, weight * tx * ty, sum);
 }
 
-void PtmTexture::trilinear(double x, double y, double lod, double* sum, double weight) const
+PtmTexture::Detail PtmTexture::detail(double footprint_units) const
 {
+    const double footprint = footprint_units * std::max(texels_per_unit_[0], texels_per_unit_[1]);
+    const double lod = std::clamp(std::log2(std::max(footprint, 1.0)), 0.0, double(levels_.size() - 1));
     const int fine = int(lod);
-    const double t = lod - fine;
-    for (int level = fine; level <= std::min(fine + 1, int(levels_.size()) - 1); ++level) {
-        const double w = level == fine ? 1 - t : t;
+    return {fine, lod - fine};
+}
+
+void PtmTexture::trilinear(double x, double y, const Detail& detail, double* sum, double weight) const
+{
+    for (int level = detail.fine; level <= std::min(detail.fine + 1, int(levels_.size()) - 1); ++level) {
+        const double w = level == detail.fine ? 1 - detail.t : detail.t;
         if (w == 0) continue;
         const Level& l = levels_[level];
         bilinear(l, x * l.width / levels_[0].width, y * l.height / levels_[0].height, sum, weight * w);
     }
 }
 
-std::array<legendre::Terms, 3> PtmTexture::functions(const Vec2& uv, double footprint_units) const
+void PtmTexture::function_sum(const Vec2& uv, const Detail& detail, TileCache& cache, double* sum) const
 {
     const double x0 = uv[0] * texels_per_unit_[0], y0 = uv[1] * texels_per_unit_[1];
-    const double footprint = footprint_units * std::max(texels_per_unit_[0], texels_per_unit_[1]);
-    const double lod = std::clamp(std::log2(std::max(footprint, 1.0)), 0.0, double(levels_.size() - 1));
-    double sum[floats_per_texel] = {};
+    std::fill(sum, sum + floats_per_texel, 0.0);
     if (!grid_) {
-        trilinear(x0, y0, lod, sum, 1);
-    } else {
-        // ν + Σ w_i (f_i − ν): the tiles' functions with the grid's weights, one set for all fields.
-        const float* mean = levels_.back().functions.data();
-        double weights = 0;
-        for (const TileVertex& vertex : grid_->blend(x0, y0)) {
-            if (vertex.weight == 0) continue;
-            const std::array<double, 2> t = tile_position(vertex, x0, y0, levels_[0].width, levels_[0].height);
-            trilinear(t[0], t[1], lod, sum, vertex.weight);
-            weights += vertex.weight;
-        }
-        for (int k = 0; k < floats_per_texel; ++k) sum[k] += (1 - weights) * double(mean[k]);
+        trilinear(x0, y0, detail, sum, 1);
+        return;
     }
+    // ν + Σ w_i (f_i − ν): the tiles' functions with the grid's weights, one set for all fields.
+    const float* mean = levels_.back().functions.data();
+    double weights = 0;
+    for (const TileVertex& vertex : grid_->blend(x0, y0, cache)) {
+        if (vertex.weight == 0) continue;
+        const std::array<double, 2> t = tile_position(vertex, x0, y0, levels_[0].width, levels_[0].height);
+        trilinear(t[0], t[1], detail, sum, vertex.weight);
+        weights += vertex.weight;
+    }
+    for (int k = 0; k < floats_per_texel; ++k) sum[k] += (1 - weights) * double(mean[k]);
+}
+
+std::array<legendre::Terms, 3> PtmTexture::functions(const Vec2& uv, double footprint_units) const
+{
+    double sum[floats_per_texel];
+    TileCache cache;
+    function_sum(uv, detail(footprint_units), cache, sum);
     std::array<legendre::Terms, 3> result{};
     for (int c = 0; c < 3; ++c)
         for (int k = 0; k < legendre::term_count; ++k) result[c][k] = sum[c * legendre::term_count + k];
@@ -158,6 +175,18 @@ Rgb PtmTexture::lit(const std::array<legendre::Terms, 3>& functions) const
     return rgb;
 }
 
+Rgb PtmTexture::lit(const double* sum) const
+{
+    // lit(functions) without the copies: legendre::dot's sum, k = 0 … 5, per channel.
+    Rgb rgb{};
+    for (int c = 0; c < 3; ++c) {
+        double value = 0;
+        for (int k = 0; k < legendre::term_count; ++k) value += sum[c * legendre::term_count + k] * basis_[k];
+        rgb[c] = float(std::max(0.0, value));
+    }
+    return rgb;
+}
+
 Rgb PtmTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 {
     return lit(functions(uv, footprint.major_axis()));
@@ -166,6 +195,33 @@ Rgb PtmTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 Rgb PtmTexture::eval_solid(const SurfacePoint& point) const
 {
     return lit(functions({point.p[0], point.p[1]}, point.major_axis()));
+}
+
+void PtmTexture::eval_raster(const RasterRegion& region, double footprint_units, const RgbOutput& out) const
+{
+    const Detail d = detail(footprint_units);
+    TileCache cache;
+    double sum[floats_per_texel];
+    for (int j = 0; j < region.height; ++j)
+        for (int i = 0; i < region.width; ++i) {
+            function_sum({region.u(i), region.v(j)}, d, cache, sum);
+            out.set(std::size_t(j) * region.width + i, lit(sum));
+        }
+}
+
+void PtmTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
+{
+    eval_raster(region, region.footprint.major_axis(), out);
+}
+
+void PtmTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
+{
+    // eval_solid() projects on (u, v): the slice is the 2D raster, filtered at the footprint of
+    // its surface points (normal +w) as eval_solid() measures it.
+    SurfacePoint point;
+    point.dpdx = {region.plane.footprint.dudx, region.plane.footprint.dvdx, 0};
+    point.dpdy = {region.plane.footprint.dudy, region.plane.footprint.dvdy, 0};
+    eval_raster(region.plane, point.major_axis(), out);
 }
 
 }  // namespace stochtex

@@ -24,6 +24,11 @@
 // of the source relit at L. The weights are taken at the footprint's centre (the tiling model's
 // per-texel estimator); minification converges to ν, the exact mean. The periodic form uses the
 // grid's periodic lattice.
+//
+// Batch evaluation: a region has one footprint, so eval_region / eval_solid_region resolve its
+// level of detail once, wrap texel indices without a division per texel and share the grid's
+// vertex draws along the rows (TileCache); per pixel the sums are eval()'s, in eval()'s order,
+// so values are bit-identical to it.
 #pragma once
 
 #include "models/ptm/legendre_basis.h"
@@ -49,6 +54,8 @@ public:
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
+    void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
+    void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
     Rgb mean() const override { return mean_; }
 
     /// The filtered R, G, B reflectance functions at uv (Legendre coefficients): for relighting
@@ -63,11 +70,22 @@ private:
         std::vector<float> functions;  // 18 floats per texel: R, G, B × b0 … b5
     };
     static constexpr int floats_per_texel = 18;
+    /// A footprint's level of detail, resolved once: the finer level and the weight of the next.
+    struct Detail {
+        int fine = 0;
+        double t = 0;
+    };
+    Detail detail(double footprint_units) const;
     void add_texel(const Level& level, int x, int y, double weight, double* sum) const;
     void bilinear(const Level& level, double x, double y, double* sum, double weight) const;
     /// The trilinear lookup at level-0 texel position (x, y), added to sum with `weight`.
-    void trilinear(double x, double y, double lod, double* sum, double weight) const;
+    void trilinear(double x, double y, const Detail& detail, double* sum, double weight) const;
+    /// The filtered functions (R, G, B × b0 … b5) at texture position uv.
+    void function_sum(const Vec2& uv, const Detail& detail, TileCache& cache, double* sum) const;
     Rgb lit(const std::array<legendre::Terms, 3>& functions) const;
+    Rgb lit(const double* sum) const;
+    /// The region's pixels lit, filtered at one footprint (texture units).
+    void eval_raster(const RasterRegion& region, double footprint_units, const RgbOutput& out) const;
 
     std::vector<Level> levels_;
     legendre::Terms basis_{};

@@ -159,15 +159,30 @@ double ColourMapFilter::fractional_level(double sigma) const
 
 Rgb ColourMapFilter::fetch_fractional(double level_a, double level_b, double a, double b) const
 {
-    const int ia = std::min(int(level_a), levels_ - 1), ib = std::min(int(level_b), levels_ - 1);
-    const double ta = level_a - ia, tb = level_b - ib;
-    const int ja = std::min(ia + 1, levels_ - 1), jb = std::min(ib + 1, levels_ - 1);
-    const Rgb c00 = fetch(ia, ib, a, b);
-    if (ta == 0 && tb == 0) return c00;
-    const Rgb c10 = fetch(ja, ib, a, b), c01 = fetch(ia, jb, a, b), c11 = fetch(ja, jb, a, b);
+    return Fractional(*this, level_a, level_b).fetch(a, b);
+}
+
+ColourMapFilter::Fractional::Fractional(const ColourMapFilter& filter, double level_a, double level_b) : filter_(filter)
+{
+    // The four (floor, ceil) level pairs and the blend weights, once for all the fetches at
+    // these levels (the covariance method's nodes share them).
+    ia_ = std::min(int(level_a), filter.levels_ - 1), ib_ = std::min(int(level_b), filter.levels_ - 1);
+    ta_ = level_a - ia_, tb_ = level_b - ib_;
+    ja_ = std::min(ia_ + 1, filter.levels_ - 1), jb_ = std::min(ib_ + 1, filter.levels_ - 1);
+}
+
+Rgb ColourMapFilter::Fractional::fetch(double a, double b) const
+{
+    const Rgb c00 = filter_.fetch(ia_, ib_, a, b);
+    if (ta_ == 0 && tb_ == 0) return c00;
+    // A corner whose weight is 0 adds c·0 = +0 (the map's values are ≥ 0): any value will do,
+    // so it is not fetched.
+    const Rgb c10 = ta_ == 0 ? c00 : filter_.fetch(ja_, ib_, a, b);
+    const Rgb c01 = tb_ == 0 ? c00 : filter_.fetch(ia_, jb_, a, b);
+    const Rgb c11 = ta_ == 0 ? c01 : tb_ == 0 ? c10 : filter_.fetch(ja_, jb_, a, b);
     Rgb out;
     for (int c = 0; c < 3; ++c)
-        out[c] = float((c00[c] * (1 - ta) + c10[c] * ta) * (1 - tb) + (c01[c] * (1 - ta) + c11[c] * ta) * tb);
+        out[c] = float((c00[c] * (1 - ta_) + c10[c] * ta_) * (1 - tb_) + (c01[c] * (1 - ta_) + c11[c] * ta_) * tb_);
     return out;
 }
 
@@ -199,10 +214,11 @@ Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance
     const double spacing = std::max(1.0, std::sqrt(std::min(d_a, d_b)));
     const int count = std::clamp(int(std::ceil(8 * length / spacing)) | 1, 3, 63);
     const LineQuadrature& rule = line_quadrature(count);
+    const Fractional levels(*this, la, lb);
     double sum[3] = {0, 0, 0};
     for (int k = 0; k < count; ++k) {
         const double t = rule.node[k];
-        const Rgb c = fetch_fractional(la, lb, std::clamp(a + t * alpha / size_, 0.0, 1.0), std::clamp(b + t * beta / size_, 0.0, 1.0));
+        const Rgb c = levels.fetch(std::clamp(a + t * alpha / size_, 0.0, 1.0), std::clamp(b + t * beta / size_, 0.0, 1.0));
         for (int ch = 0; ch < 3; ++ch) sum[ch] += rule.weight[k] * c[ch];
     }
     return {float(sum[0]), float(sum[1]), float(sum[2])};

@@ -54,6 +54,17 @@ private:
     Rgb fetch(int level_a, int level_b, double a, double b) const;
     /// Linear blend of the four (floor, ceil) level pairs around fractional levels.
     Rgb fetch_fractional(double level_a, double level_b, double a, double b) const;
+    /// fetch_fractional() with its levels resolved once, for many positions.
+    class Fractional {
+    public:
+        Fractional(const ColourMapFilter& filter, double level_a, double level_b);
+        Rgb fetch(double a, double b) const;
+
+    private:
+        const ColourMapFilter& filter_;
+        int ia_, ib_, ja_, jb_;
+        double ta_, tb_;
+    };
     double fractional_level(double sigma) const;
 
     int size_;

@@ -1,9 +1,12 @@
 #include "models/tiling/moment_pyramid.h"
 
+#include "numerics/exact_rounding.h"
+
 #include <stochtex/error.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace stochtex {
 
@@ -41,8 +44,8 @@ Moments MomentPyramid::unpack(const Level& level, std::size_t texel) const
 {
     Moments m;
     m.channels = channels_;
-    std::copy_n(&level.mean[texel * channels_], channels_, m.mean.begin());
-    const double* second = &level.second[texel * pairs_];
+    std::copy_n(&level.data[texel * record_], channels_, m.mean.begin());
+    const double* second = &level.data[texel * record_ + channels_];
     for (int a = 0; a < channels_; ++a)
         for (int b = a; b < channels_; ++b) m.moment(a, b) = m.moment(b, a) = *second++;
     return m;
@@ -50,33 +53,32 @@ Moments MomentPyramid::unpack(const Level& level, std::size_t texel) const
 
 void MomentPyramid::pack(const Moments& moments, Level& level, std::size_t texel) const
 {
-    std::copy_n(moments.mean.begin(), channels_, &level.mean[texel * channels_]);
-    double* second = &level.second[texel * pairs_];
+    std::copy_n(moments.mean.begin(), channels_, &level.data[texel * record_]);
+    double* second = &level.data[texel * record_ + channels_];
     for (int a = 0; a < channels_; ++a)
         for (int b = a; b < channels_; ++b) *second++ = moments.moment(a, b);
 }
 
 MomentPyramid::MomentPyramid(const std::vector<std::vector<double>>& planes, int width, int height)
-    : channels_(int(planes.size())), pairs_(channels_ * (channels_ + 1) / 2)
+    : channels_(int(planes.size())), pairs_(channels_ * (channels_ + 1) / 2), record_(channels_ + pairs_)
 {
     if (channels_ < 1 || channels_ > max_moment_channels) throw Error("moment pyramid: 1 to 3 channels");
     if (!power_of_two(width) || !power_of_two(height))
         throw Error("moment pyramid: sides must be powers of two, got " + std::to_string(width) + "x" +
                     std::to_string(height));
     const std::size_t texels = std::size_t(width) * height;
-    Level base{width, height, std::vector<double>(texels * channels_, 0.0), std::vector<double>(texels * pairs_, 0.0)};
+    Level base{width, height, std::vector<double>(texels * record_, 0.0)};
     for (int c = 0; c < channels_; ++c) {
         if (planes[c].size() != texels) throw Error("moment pyramid: plane size does not match");
-        for (std::size_t i = 0; i < texels; ++i) base.mean[i * channels_ + c] = planes[c][i];
+        for (std::size_t i = 0; i < texels; ++i) base.data[i * record_ + c] = planes[c][i];
     }
     levels_.push_back(std::move(base));
     while (levels_.back().width > 1 || levels_.back().height > 1) {
         const Level& fine = levels_.back();
         const int fx = fine.width > 1 ? 2 : 1, fy = fine.height > 1 ? 2 : 1;
-        Level coarse{fine.width / fx, fine.height / fy, {}, {}};
+        Level coarse{fine.width / fx, fine.height / fy, {}};
         const std::size_t count = std::size_t(coarse.width) * coarse.height;
-        coarse.mean.assign(count * channels_, 0.0);
-        coarse.second.assign(count * pairs_, 0.0);
+        coarse.data.assign(count * record_, 0.0);
         for (int y = 0; y < coarse.height; ++y)
             for (int x = 0; x < coarse.width; ++x) {
                 MomentMixture mixture(channels_);
@@ -86,6 +88,10 @@ MomentPyramid::MomentPyramid(const std::vector<std::vector<double>>& planes, int
                 pack(mixture.result(), coarse, std::size_t(y) * coarse.width + x);
             }
         levels_.push_back(std::move(coarse));
+    }
+    for (Level& level : levels_) {
+        level.scale_x = double(level.width) / width;
+        level.scale_y = double(level.height) / height;
     }
 }
 
@@ -117,8 +123,8 @@ Moments MomentPyramid::sample_level(int level, double x, double y, TexelInterpol
     for (int k = 0; k < 4; ++k) {
         const double w = weights[k];
         if (w == 0) continue;
-        const double* m = &l.mean[texels[k] * channels_];
-        const double* c = &l.second[texels[k] * pairs_];
+        const double* m = &l.data[texels[k] * record_];
+        const double* c = m + channels_;
         for (int a = 0; a < channels_; ++a) mean[a] += w * m[a];
         for (int p = 0; p < pairs_; ++p) second[p] += w * c[p];
     }
@@ -128,6 +134,67 @@ Moments MomentPyramid::sample_level(int level, double x, double y, TexelInterpol
     for (int a = 0, p = 0; a < channels_; ++a)
         for (int b = a; b < channels_; ++b, ++p) result.moment(a, b) = result.moment(b, a) = second[p];
     return result;
+}
+
+template <int Channels>
+void MomentPyramid::sample_level_linear(int level, double x, double y, double* mean, double* pairs) const
+{
+    // sample_level(linear) term for term, the channel count known at compile time; the wrap of
+    // the (integral) texel index is a mask, the sides being powers of two (the same index fmod
+    // and wrap give).
+    constexpr int n_pairs = Channels * (Channels + 1) / 2, record = Channels + n_pairs;
+    const Level& l = levels_[std::size_t(level)];
+    // x · l.width / width() with the ratio (a power of two: exact, so the same double) taken once.
+    const double lx = x * l.scale_x - 0.5, ly = y * l.scale_y - 0.5;
+    const double x0 = floor_exact(lx), y0 = floor_exact(ly);
+    const double tx = lx - x0, ty = ly - y0;
+    const std::int64_t mask_x = l.width - 1, mask_y = l.height - 1;
+    const std::int64_t ix = std::int64_t(x0) & mask_x, iy = std::int64_t(y0) & mask_y;
+    const std::int64_t jx = (ix + 1) & mask_x, jy = (iy + 1) & mask_y;
+    const std::size_t texels[4] = {std::size_t(iy * l.width + ix), std::size_t(iy * l.width + jx),
+                                   std::size_t(jy * l.width + ix), std::size_t(jy * l.width + jx)};
+    const double weights[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
+    double sum[record] = {};
+    for (int k = 0; k < 4; ++k) {
+        const double w = weights[k];
+        if (w == 0) continue;
+        const double* texel = &l.data[texels[k] * record];
+        for (int r = 0; r < record; ++r) sum[r] += w * texel[r];
+    }
+    for (int a = 0; a < Channels; ++a) mean[a] = sum[a];
+    for (int p = 0; p < n_pairs; ++p) pairs[p] = sum[Channels + p];
+}
+
+MomentPyramid::LevelChoice MomentPyramid::choose_level(double level) const
+{
+    level = std::clamp(level, 0.0, double(level_count() - 1));
+    const int lower = std::min(int(level), level_count() - 1);
+    return {lower, level - lower};
+}
+
+template <int Channels>
+void MomentPyramid::sample_linear(const LevelChoice& level, double x, double y, double* mean, double* pairs) const
+{
+    constexpr int n_pairs = Channels * (Channels + 1) / 2;
+    sample_level_linear<Channels>(level.lower, x, y, mean, pairs);
+    if (level.t == 0) return;
+    double upper_mean[Channels], upper_pairs[n_pairs];
+    sample_level_linear<Channels>(level.lower + 1, x, y, upper_mean, upper_pairs);
+    for (int a = 0; a < Channels; ++a) mean[a] += level.t * (upper_mean[a] - mean[a]);
+    for (int p = 0; p < n_pairs; ++p) pairs[p] += level.t * (upper_pairs[p] - pairs[p]);
+}
+
+template void MomentPyramid::sample_linear<1>(const LevelChoice&, double, double, double*, double*) const;
+template void MomentPyramid::sample_linear<2>(const LevelChoice&, double, double, double*, double*) const;
+template void MomentPyramid::sample_linear<3>(const LevelChoice&, double, double, double*, double*) const;
+
+void MomentPyramid::sample_linear(const LevelChoice& level, double x, double y, double* mean, double* pairs) const
+{
+    switch (channels_) {
+    case 1: return sample_linear<1>(level, x, y, mean, pairs);
+    case 2: return sample_linear<2>(level, x, y, mean, pairs);
+    default: return sample_linear<3>(level, x, y, mean, pairs);
+    }
 }
 
 Moments MomentPyramid::sample(double level, double x, double y, TexelInterpolation interpolation) const

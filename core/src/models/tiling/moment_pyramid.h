@@ -50,21 +50,41 @@ public:
     /// The texel moments at continuous position (x, y) in level-0 pixels, at continuous level
     /// `level` (clamped to [0, level_count() − 1]).
     Moments sample(double level, double x, double y, TexelInterpolation interpolation) const;
+    /// A continuous level resolved as sample() resolves it (clamped, the level below and the
+    /// fraction towards the next), once for all the lookups of one footprint.
+    struct LevelChoice {
+        int lower = 0;
+        double t = 0;
+    };
+    LevelChoice choose_level(double level) const;
+    /// sample(level, x, y, linear) written packed: mean[channels()], then the upper triangle of
+    /// the moments row by row (pairs[(0,0), (0,1), …]) — the same values, bit for bit, without
+    /// building Moments (the hot path of the tiling raster).
+    void sample_linear(const LevelChoice& level, double x, double y, double* mean, double* pairs) const;
+    /// sample_linear() for a pyramid of `Channels` channels (1, 2 or 3: instantiated for those).
+    template <int Channels>
+    void sample_linear(const LevelChoice& level, double x, double y, double* mean, double* pairs) const;
+    int pairs() const { return pairs_; }
     /// The whole exemplar's exact moments: the 1 × 1 level.
     Moments global() const { return texel(level_count() - 1, 0, 0); }
 
 private:
     struct Level {
         int width, height;
-        std::vector<double> mean;    // channels per texel
-        std::vector<double> second;  // the upper triangle of the symmetric moments per texel
+        // Per texel one record: the channels' means, then the upper triangle of the symmetric
+        // moments (a lookup reads one record, not two arrays).
+        std::vector<double> data;
+        double scale_x = 1, scale_y = 1;  // texels of this level per level-0 pixel (powers of two)
     };
     Moments unpack(const Level& level, std::size_t texel) const;
     void pack(const Moments& moments, Level& level, std::size_t texel) const;
     Moments sample_level(int level, double x, double y, TexelInterpolation interpolation) const;
+    template <int Channels>
+    void sample_level_linear(int level, double x, double y, double* mean, double* pairs) const;
 
     int channels_;
-    int pairs_;  // channels (channels + 1) / 2
+    int pairs_;   // channels (channels + 1) / 2
+    int record_;  // channels + pairs: doubles per texel
     std::vector<Level> levels_;
 };
 

@@ -36,6 +36,23 @@ struct FootprintSampling {
     TexelInterpolation interpolation = TexelInterpolation::linear;
 };
 
+/// The footprint estimator's taps for one footprint, resolved once (tap counts, their offsets
+/// and their level): a raster shares it across all its pixels.
+struct TapPlan {
+    static constexpr int max_taps_per_axis = 64;  ///< more are capped (sampling.max_taps ≤ 64)
+    static constexpr int max_planned_taps = 64;   ///< beyond, the mixture is MomentMixture's
+    int na = 1, nb = 1;  ///< taps along the footprint's axes a and b
+    double level = 0;    ///< their (continuous) pyramid level
+    MomentPyramid::LevelChoice choice;
+    TexelInterpolation interpolation = TexelInterpolation::linear;
+    /// Tap (i, j) is at (x + along_a[i][0] + along_b[j][0], y + along_a[i][1] + along_b[j][1]).
+    std::array<std::array<double, 2>, max_taps_per_axis> along_a{}, along_b{};
+    /// MomentMixture's coefficients for equal weights, tap k (row-major): weight / total_k and
+    /// the scatter factor total_(k−1) · weight / total_k; `total` the weights' final sum.
+    double weight = 1, total = 1;
+    std::array<double, max_planned_taps> ratio{}, scatter{};
+};
+
 class TilingNoise {
 public:
     /// The pyramid of a periodic exemplar (shared: several grids may tile one exemplar).
@@ -56,8 +73,22 @@ public:
     /// Arbitrary-footprint estimator.
     Moments footprint_estimate(double x, double y, const Footprint2D& footprint_px, const FootprintSampling& sampling) const;
 
+    /// The taps of footprint_estimate() for this footprint.
+    TapPlan plan(const Footprint2D& footprint_px, const FootprintSampling& sampling) const;
+    /// footprint_estimate() with the taps planned and the grid's vertices cached: the same
+    /// values, bit for bit (footprint_estimate() is this with a fresh plan and cache).
+    Moments footprint_estimate(double x, double y, const TapPlan& plan, TileCache& cache) const;
+
 private:
     Moments estimate(double x, double y, double level, TexelInterpolation interpolation, const TileBlend& blend) const;
+    /// estimate() at a planned level (any interpolation).
+    Moments tap_estimate(double x, double y, const TapPlan& plan, TileCache& cache) const;
+    /// The linear tap estimate of a `Channels`-channel pyramid, packed (mean, upper-triangle pairs).
+    template <int Channels>
+    void tap_moments(double x, double y, const TapPlan& plan, TileCache& cache, double* mean, double* pairs) const;
+    /// footprint_estimate() for linear interpolation and ≤ max_planned_taps taps.
+    template <int Channels>
+    Moments planned_estimate(double x, double y, const TapPlan& plan, TileCache& cache) const;
 
     std::shared_ptr<const MomentPyramid> pyramid_;
     TilingGrid grid_;

@@ -64,7 +64,8 @@ TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* 
             planes_.emplace_back(pyramid, TilingGrid(seed, edge));
     }
     // The exemplar stores each channel in its map's input units (fit_tiling_exemplar): unit σ_M.
-    if (output_ == TilingOutput::colour) colour_mapping_.emplace(description, std::array<double, 3>{1, 1, 1});
+    if (output_ == TilingOutput::colour)
+        colour_mapping_ = std::make_shared<const TabulatedColourMapping>(description, std::array<double, 3>{1, 1, 1});
     if (output_ == TilingOutput::colour_map) colour_map_.emplace(make_colour_map(parameters.colour_map));
 }
 
@@ -96,7 +97,21 @@ Rgb TilingTexture::colour(const Moments& m) const
 
 Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(moments(uv, footprint)); }
 
-Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
+void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
+{
+    // moments() at every pixel with the footprint's taps planned once and the grid's vertices
+    // shared along the rows.
+    const double ppu = description().pixels_per_unit;
+    const TapPlan plan = planes_[0].plan(region.footprint.scaled(ppu), options_.sampling);
+    TileCache cache;
+    for (int j = 0; j < region.height; ++j) {
+        const double y = region.v(j) * ppu;
+        for (int i = 0; i < region.width; ++i)
+            out.set(std::size_t(j) * region.width + i, colour(planes_[0].footprint_estimate(region.u(i) * ppu, y, plan, cache)));
+    }
+}
+
+TilingTexture::SolidPlan TilingTexture::solid_plan(const SurfacePoint& point) const
 {
     // Plane k spans the axes (k, k+1 mod 3) and faces axis k+2: weights ∝ n⁴, Σ ω² = 1.
     const double ppu = description().pixels_per_unit;
@@ -108,23 +123,58 @@ Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
         omega[k] = std::pow(facing, 4);
         norm += omega[k] * omega[k];
     }
+    SolidPlan plan;
+    for (int k = 0; k < 3; ++k) {
+        plan.weight[k] = omega[k] / std::sqrt(norm);
+        if (plan.weight[k] == 0) continue;
+        const int s = k, t = (k + 1) % 3;
+        // The footprint projected on the plane (s, t), in exemplar pixels.
+        const Footprint2D footprint = Footprint2D{point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t]}.scaled(ppu);
+        plan.taps[k] = planes_[k].plan(footprint, options_.sampling);
+    }
+    return plan;
+}
+
+Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const
+{
+    const double ppu = description().pixels_per_unit;
     const Moments& global = planes_[0].global();
     Moments result;
     result.channels = global.channels;
     result.mean = global.mean;
     for (int k = 0; k < 3; ++k) {
-        const double w = omega[k] / std::sqrt(norm);
+        const double w = plan.weight[k];
         if (w == 0) continue;
         const int s = k, t = (k + 1) % 3;
-        // The footprint projected on the plane (s, t), in exemplar pixels.
-        const Footprint2D footprint = Footprint2D{point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t]}.scaled(ppu);
-        const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, footprint, options_.sampling);
+        const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, plan.taps[k], caches[k]);
         for (int a = 0; a < result.channels; ++a) {
             result.mean[a] += w * (m.mean[a] - global.mean[a]);
             for (int b = 0; b < result.channels; ++b) result.moment(a, b) += w * w * m.moment(a, b);
         }
     }
-    return colour(result);
+    return result;
+}
+
+Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
+{
+    std::array<TileCache, 3> caches;
+    return colour(solid_moments(point, solid_plan(point), caches));
+}
+
+void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
+{
+    // One normal (+w) and one footprint for the whole slice: one plan, vertices shared.
+    const RasterRegion& plane = region.plane;
+    SurfacePoint point;
+    point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
+    point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
+    const SolidPlan plan = solid_plan(point);
+    std::array<TileCache, 3> caches;
+    for (int j = 0; j < plane.height; ++j)
+        for (int i = 0; i < plane.width; ++i) {
+            point.p = {plane.u(i), plane.v(j), region.w};
+            out.set(std::size_t(j) * plane.width + i, colour(solid_moments(point, plan, caches)));
+        }
 }
 
 }  // namespace stochtex

@@ -16,6 +16,13 @@
 // Gauss–Hermite), colour_map looks up the pre-blurred colour-map table Ŝ(μ̂, Σ̂)
 // (colour_map_filter.h). So minification converges to the exemplar's exact statistics.
 //
+// Colour's histogram maps are tabulated over (mean, spread) (tabulated_colour_mapping.h), for
+// eval() and the batch methods alike.
+//
+// Batch evaluation: eval_region / eval_solid_region plan the footprint's taps once (their
+// count, offsets and pyramid level) and share the triangle grid's vertex draws along the rows
+// (TileCache); per pixel the arithmetic is eval()'s, so values are bit-identical to it.
+//
 // Solid: no solid exemplar exists, so eval_solid() blends three axis-aligned planar tilings
 // (independent grids) with weights ∝ n_k⁴ normalised so that Σ ω_k² = 1: variance-preserving
 // like the tiles themselves, and filtered with each plane's projected footprint.
@@ -25,11 +32,13 @@
 #pragma once
 
 #include "models/tiling/colour_map_filter.h"
-#include "colour/colour_mapping.h"
+#include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_noise.h"
 
 #include <stochtex/texture.h>
 #include <stochtex/models/tiling_parameters.h>
+
+#include <array>
 
 #include <memory>
 #include <optional>
@@ -50,6 +59,8 @@ public:
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
+    void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
+    void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
     Rgb mean() const override { return colour(planes_[0].global()); }
 
     /// The blended channels' filtered moments at uv over the footprint (2D).
@@ -63,12 +74,19 @@ public:
 
 private:
     TilingTexture(const TextureDescription& description, const Vec2* period, const TilingFilterOptions& options);
+    /// The solid blend's weights and per-plane taps for one normal and footprint.
+    struct SolidPlan {
+        std::array<double, 3> weight{};  ///< ω_k / ‖ω‖ (0: plane unused)
+        std::array<TapPlan, 3> taps;
+    };
+    SolidPlan solid_plan(const SurfacePoint& point) const;
+    Moments solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const;
 
     TilingFilterOptions options_;
     TilingOutput output_;
     /// planes_[0] is the 2D texture; planes_[1], [2] the extra planes of the solid blend.
     std::vector<TilingNoise> planes_;
-    std::optional<ColourMapping> colour_mapping_;
+    std::shared_ptr<const TabulatedColourMapping> colour_mapping_;
     std::optional<ColourMapFilter> colour_map_;
 };
 

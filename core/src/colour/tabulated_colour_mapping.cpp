@@ -1,0 +1,66 @@
+#include "colour/tabulated_colour_mapping.h"
+
+#include "colour/gaussian.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace stochtex {
+
+TabulatedColourMapping::TabulatedColourMapping(const TextureDescription& description, const std::array<double, 3>& sigma_m)
+    : exact_(description, sigma_m)
+{
+    for (int c = 0; c < 3; ++c) {
+        const HistogramMap& map = description.histograms[c];
+        knot_range_[c] = map.enabled() ? std::array<double, 2>{map.z.front(), map.z.back()} : std::array<double, 2>{0, 0};
+    }
+}
+
+void TabulatedColourMapping::build() const
+{
+    const GaussHermite& rule = GaussHermite::standard_normal();
+    double reach = 0;
+    for (double node : rule.node) reach = std::max(reach, std::abs(node));
+    for (int c = 0; c < 3; ++c) {
+        if (!exact_.has_map(c)) continue;
+        Table& table = tables_[c];
+        // Columns cover the knots ± the rule's reach at σ_max (beyond, every node clamps).
+        const double margin = reach * sigma_max + step;
+        table.z0 = std::floor((knot_range_[c][0] - margin) / step) * step;
+        table.columns = int(std::ceil((knot_range_[c][1] + margin - table.z0) / step)) + 1;
+        table.rows = int(std::lround(sigma_max / step)) + 1;
+        table.values.resize(std::size_t(table.columns) * table.rows);
+        tbb::parallel_for(0, table.rows, [&](int row) {
+            for (int column = 0; column < table.columns; ++column)
+                table.values[std::size_t(row) * table.columns + column] =
+                    float(exact_.map_channel(c, table.z0 + column * step, row * step));
+        });
+    }
+}
+
+double TabulatedColourMapping::map_channel(int c, double z, double dropped_sigma) const
+{
+    if (!exact_.has_map(c) || dropped_sigma < 1e-4 || !(dropped_sigma < sigma_max)) return exact_.map_channel(c, z, dropped_sigma);
+    std::call_once(built_, [this] { build(); });
+    const Table& table = tables_[c];
+    const double s = dropped_sigma * (1 / step);
+    const int row = std::min(int(s), table.rows - 2);
+    const double fs = s - row;
+    const double q = std::clamp((z - table.z0) * (1 / step), 0.0, double(table.columns - 1));
+    const int column = std::min(int(q), table.columns - 2);
+    const double fq = q - column;
+    const float* low = &table.values[std::size_t(row) * table.columns + column];
+    const float* high = low + table.columns;
+    return (low[0] * (1 - fq) + low[1] * fq) * (1 - fs) + (high[0] * (1 - fq) + high[1] * fq) * fs;
+}
+
+Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const
+{
+    std::array<double, 3> y;
+    for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
+    return exact_.combine(y);
+}
+
+}  // namespace stochtex
