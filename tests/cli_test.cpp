@@ -164,7 +164,7 @@ protected:
         photo = shared_dir / "photo.png";
         texture = shared_dir / "photo.stex";
         write_small_photo(photo, photo_size);
-        const RunResult r = run_stex({"analyze", photo.string(), "-o", texture.string()}, shared_dir);
+        const RunResult r = run_stex({"analyze", photo.string(), "-o", texture.string(), "--model", "wavelet"}, shared_dir);
         ASSERT_TRUE(r.exited && r.code == 0) << "analyze failed: " << r;
     }
 
@@ -378,7 +378,7 @@ TEST_F(Cli, AnalyzeRenderInfoCompareMorph)
 {
     // analyze (again, into this test's folder, with non-default options)
     const fs::path stex_path = dir / "texture.stex";
-    expect_success(stex({"analyze", photo.string(), "-o", stex_path.string(), "--colour", "rgb", "--seed", "5"}));
+    expect_success(stex({"analyze", photo.string(), "-o", stex_path.string(), "--model", "wavelet", "--colour", "rgb", "--seed", "5"}));
     ASSERT_TRUE(fs::exists(stex_path));
     EXPECT_GT(fs::file_size(stex_path), 0u);
 
