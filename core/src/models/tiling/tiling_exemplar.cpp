@@ -1,5 +1,7 @@
 #include "models/tiling/tiling_exemplar.h"
 
+#include "colour/histogram_map.h"
+
 #include "spectra/fft.h"
 #include "stex/quantised_image.h"
 #include "models/tiling/tiling_parameters.h"
@@ -137,13 +139,24 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
     const CropOrigin origin = representative_crop_origin(channels, width, height, crop_width, crop_height);
     std::vector<std::vector<float>> planes;
     for (int c = 0; c < 3; ++c) {
-        planes.push_back(periodic_crop(channels[c], width, height, crop_width, crop_height, origin));
-        if (!histograms[c].enabled()) continue;
-        double sum = 0, sum2 = 0;
-        for (float v : channels[c]) sum += v, sum2 += double(v) * v;
-        const double n = double(channels[c].size()), sigma = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
-        if (sigma > 0)
-            for (float& v : planes.back()) v = float(v / sigma);
+        std::vector<float>& plane = planes.emplace_back(periodic_crop(channels[c], width, height, crop_width, crop_height, origin));
+        // Even the most representative crop holds less of the photo's large-scale variation than
+        // the whole photo does (and the periodic component removes a little more): its values
+        // are given the whole photo's distribution, so the texture's histogram and contrast are
+        // the photo's and the crop keeps its structure (its ranks, hence its spectrum's shape).
+        const EmpiricalDistribution crop_distribution(plane);
+        if (!(crop_distribution.stddev() > 0)) continue;
+        if (histograms[c].enabled()) {
+            // The map's input: standard-normal by the crop's own ranks (Heitz–Neyret's T).
+            gaussianize(plane, crop_distribution);
+            const double scale = 1 / crop_distribution.stddev();
+            for (float& v : plane) v = float(v * scale);
+        } else {
+            // A Gaussian channel: the whole channel's mean and σ.
+            const EmpiricalDistribution whole(channels[c]);
+            const double scale = whole.stddev() / crop_distribution.stddev();
+            for (float& v : plane) v = float(whole.mean() + (v - crop_distribution.mean()) * scale);
+        }
     }
     TilingParameters parameters;
     parameters.output = TilingOutput::colour;

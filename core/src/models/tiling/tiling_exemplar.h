@@ -36,8 +36,9 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
 /// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
 /// representative crop (representative_crop_origin) of at most max_side² pixels, periodic, at `bits` bits. A channel with a map is stored
-/// in standard-normal units (the map's input: divided by the whole channel's σ), the others in
-/// channel units, so the texture passes stored values to ColourMapping unscaled.
+/// in standard-normal units by the crop's own ranks (the map's input), the others in channel
+/// units with the whole channel's mean and σ, so the texture's histograms are the photo's and
+/// the texture passes stored values to ColourMapping unscaled.
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits);
 
