@@ -374,6 +374,23 @@ TEST_F(Cli, HelpListsSubcommandsAndOptions)
 
 // ---- Happy path ---------------------------------------------------------------------------------
 
+TEST_F(Cli, AnalyzeChoosesTheModelByDefaultAndSaysHow)
+{
+    const fs::path chosen = dir / "chosen.stex";
+    const RunResult r = stex({"analyze", photo.string(), "-o", chosen.string()});
+    expect_success(r);
+    // The score table: a row per analysable model, the choice marked, the rule stated.
+    for (const char* part : {"penalty", "wavelet", "gabor", "tiling", "lrp", "← chosen", "rule: lowest penalty"})
+        EXPECT_TRUE(contains(r.out, part)) << part << " in\n" << r.out;
+    const RunResult info = stex({"info", chosen.string()});
+    expect_success(info);
+    EXPECT_TRUE(contains(info.out, "chosen by    auto (fidelity penalty: wavelet ")) << info.out;
+    // A model's own option goes to the models that declare it; one no model has is an error.
+    expect_success(stex({"analyze", photo.string(), "-o", chosen.string(), "--impulses", "8"}));
+    // --help names auto as the default.
+    EXPECT_TRUE(contains(stex({"analyze", "--help"}).out, "auto: fit each model")) << "help";
+}
+
 TEST_F(Cli, AnalyzeRenderInfoCompareMorph)
 {
     // analyze (again, into this test's folder, with non-default options)
