@@ -29,7 +29,7 @@ public:
     {
         declare_analysis_options(
             {integer_option("exemplar-size", 16, 1024,
-                            {"256", "px", "largest exemplar side; the exemplar is the photo's centred crop, sides powers of two"}),
+                            {"256", "px", "largest exemplar side; the exemplar is the photo's most representative crop, sides powers of two"}),
              choice_option("exemplar-bits", {"8", "16"}, {"8", "bits", "bits per stored exemplar sample"})});
     }
 
