@@ -101,6 +101,7 @@ int AnalyzeCommand::run() const
     AnalysisOptions options;
     options.model = model;
     options.colour_mode = colour_mode_from_string(colour);
+    options.try_colour_modes = colour_option && colour_option->count() == 0;
     options.histogram = histogram_mode_from_string(histogram);
     options.histogram_knots = knots;
     options.max_bands = bands;

@@ -23,6 +23,7 @@ struct AnalyzeCommand {
     int bands = 0;
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;
+    CLI::Option* colour_option = nullptr;  ///< to tell whether --colour was given
     /// Adds every registered model's declared analysis options (--psd, --impulses, --J, …).
     void add_model_options(CLI::App& command);
     int run() const;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <functional>
 #include <limits>
 #include <random>
@@ -122,6 +123,23 @@ TEST(ModelChoice, APhotoWaveletServesKeepsTheSmallWaveletTexture)
     EXPECT_EQ(chosen.model, "wavelet") << format_model_choice(chosen);
 }
 
+TEST(ModelChoice, LeftOpenTheColourModeIsChosenToo)
+{
+    AnalysisOptions options;
+    options.model = automatic_model;
+    options.try_colour_modes = true;
+    const TextureDescription chosen = analyze(striped_photo(64), options);
+    // Each model in each colour mode it declares (tiling: pca and rgb), in registry order.
+    std::vector<std::string> expected;
+    for (const ModelInfo* model : registered_model_infos())
+        if (model->capabilities.analysis)
+            for (const std::string& mode : model->automatic_colour_modes) expected.push_back(model->name + "/" + mode);
+    std::vector<std::string> got;
+    for (const ModelScore& s : chosen.provenance.model_choice) got.push_back(s.model + "/" + s.colour);
+    EXPECT_EQ(got, expected);
+    EXPECT_NE(std::find(got.begin(), got.end(), "tiling/rgb"), got.end());
+}
+
 TEST(ModelChoice, TheScoresSurviveTheFileAndAreChecked)
 {
     TextureDescription chosen = analyse_automatically(striped_photo(64));
@@ -134,6 +152,9 @@ TEST(ModelChoice, TheScoresSurviveTheFileAndAreChecked)
     TextureDescription bad = chosen;
     bad.provenance.model_choice[0].model = "marble";
     EXPECT_TRUE(test::contains(error_of([&] { validate(bad, "bad.stex"); }), "provenance.model_choice[0].model"));
+    bad = chosen;
+    bad.provenance.model_choice[0].colour = "cmyk";
+    EXPECT_TRUE(test::contains(error_of([&] { validate(bad, "bad.stex"); }), "provenance.model_choice[0].colour"));
     bad = chosen;
     bad.provenance.model_choice[0].penalty = -1;
     EXPECT_TRUE(test::contains(error_of([&] { validate(bad, "bad.stex"); }), "penalty"));

@@ -65,11 +65,17 @@ def analysable_models(models):
                            for m in models if m.get("capabilities", {}).get("analysis")]
 
 
+def _candidate(model, colour):
+    return model if colour == "pca" else "%s/%s" % (model, colour)
+
+
 def model_choice(data):
-    """The model a parsed .stex uses and, when the analysis chose it, every candidate's penalty
-    (model -> penalty, lower is closer to the photo); {} when a model was named."""
+    """The candidate a parsed .stex is ("tiling", or "tiling/rgb" when fitted in another colour
+    mode than pca) and, when the analysis chose it, every candidate's penalty (candidate ->
+    penalty, lower is closer to the photo); {} when a model was named."""
     scores = data.get("provenance", {}).get("model_choice", [])
-    return data.get("model", ""), {s["model"]: s["penalty"] for s in scores}
+    chosen = _candidate(data.get("model", ""), data.get("colour", {}).get("mode", "pca"))
+    return chosen, {_candidate(s["model"], s["colour"]): s["penalty"] for s in scores}
 
 
 def bake_args(texture, output, size, half=True):

@@ -30,6 +30,10 @@ struct AnalysisOptions {
     /// library's default stays the one cheap model; `stex analyze` defaults to automatic_model.
     std::string model = "wavelet";
     ColourMode colour_mode = ColourMode::pca;
+    /// automatic_model only: fit each model with every colour mode it declares worth trying
+    /// (ModelInfo::automatic_colour_modes) instead of colour_mode alone — for when the user
+    /// did not choose one (`stex analyze` without --colour).
+    bool try_colour_modes = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports

@@ -99,6 +99,7 @@ struct ImageLayout {
 /// the metrics of its render against the photo (stochtex/metrics.h) and the size of its file.
 struct ModelScore {
     std::string model;
+    std::string colour = "pca";               ///< the colour mode it was fitted with
     double penalty = 0;                       ///< fidelity_penalty(): lower is closer to the photo
     double radial_log_psd_db = 0;             ///< mean over RGB
     double polar_log_psd_db = 0;              ///< 2D (oriented) log-PSD distance of luma

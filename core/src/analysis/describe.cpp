@@ -25,7 +25,8 @@ std::string describe(const TextureDescription& d)
         // `--model auto`: every candidate's penalty (lower is closer to the photo).
         std::string scores;
         for (const ModelScore& s : d.provenance.model_choice)
-            scores += (scores.empty() ? "" : ", ") + s.model + info_text(" %.3f", s.penalty);
+            scores += (scores.empty() ? "" : ", ") + s.model + (s.colour == "pca" ? "" : "/" + s.colour) +
+                      info_text(" %.3f", s.penalty);
         out << "chosen by    auto (fidelity penalty: " << scores << ")\n";
     }
     out << "colour       " << to_string(d.colour_mode) << ", " << d.colour_space << "\n";

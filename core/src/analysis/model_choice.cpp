@@ -29,6 +29,7 @@ constexpr int max_scoring_side = 384;
 
 struct Candidate {
     const Model* model = nullptr;
+    ColourMode colour_mode = ColourMode::pca;
     TextureDescription description;
     ModelScore score;
 };
@@ -44,6 +45,7 @@ ModelScore score_of(const Model& model, const TextureDescription& description, c
     const ComparisonReport report = compare_images(photo, synthesis);
     ModelScore score;
     score.model = model.name();
+    score.colour = to_string(description.colour_mode);
     score.penalty = fidelity_penalty(report);
     score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
     score.polar_log_psd_db = report.polar_log_psd_db;
@@ -57,10 +59,11 @@ ModelScore score_of(const Model& model, const TextureDescription& description, c
 
 /// The options a candidate is fitted with: the shared ones, and of the model options given only
 /// those it declares (`--impulses 8` is gabor's and lrp's, not wavelet's).
-AnalysisOptions options_for(const Model& model, const AnalysisOptions& options)
+AnalysisOptions options_for(const Model& model, ColourMode colour_mode, const AnalysisOptions& options)
 {
     AnalysisOptions own = options;
     own.model = model.name();
+    own.colour_mode = colour_mode;
     own.model_options.clear();
     for (const auto& option : options.model_options)
         for (const AnalysisOption& declared : model.analysis_options())
@@ -73,40 +76,50 @@ AnalysisOptions options_for(const Model& model, const AnalysisOptions& options)
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
                                           const ProgressCallback& progress)
 {
-    std::vector<const Model*> models;
+    // The candidates: each analysable model, with each colour mode it declares worth trying
+    // when the caller left the choice open.
+    std::vector<Candidate> candidates;
     std::set<std::string> declared_somewhere;
     for (const Model* model : registered_models()) {
         if (!model->info().capabilities.analysis) continue;
-        models.push_back(model);
+        std::vector<ColourMode> modes{options.colour_mode};
+        if (options.try_colour_modes) {
+            modes.clear();
+            for (const std::string& name : model->info().automatic_colour_modes) modes.push_back(colour_mode_from_string(name));
+        }
+        for (ColourMode mode : modes) {
+            Candidate& candidate = candidates.emplace_back();
+            candidate.model = model;
+            candidate.colour_mode = mode;
+        }
         for (const AnalysisOption& option : model->analysis_options()) declared_somewhere.insert(option.info.key);
     }
     for (const auto& option : options.model_options)
         if (!declared_somewhere.count(option.first))
             throw Error("auto: unknown analysis option --" + option.first + " (no model declares it)");
 
-    if (models.empty()) throw Error("auto: no registered model can analyse photos");
+    if (candidates.empty()) throw Error("auto: no registered model can analyse photos");
 
     // The candidates side by side, one a worker: the fits are single-threaded, so this is what
     // fills the cores (each render then runs on its worker's thread; the result does not
     // depend on threads). A failure names the model it came from.
-    std::vector<Candidate> candidates(models.size());
     std::mutex progress_mutex;
     std::size_t finished = 0;
     if (progress) progress(0.0, "fitting every model");
-    tbb::parallel_for(std::size_t(0), models.size(), [&](std::size_t i) {
-        const Model& model = *models[i];
+    tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         Candidate& candidate = candidates[i];
-        candidate.model = &model;
+        const Model& model = *candidate.model;
+        const std::string label = model.name() + " (" + to_string(candidate.colour_mode) + ")";
         try {
-            candidate.description = analyze(photo, options_for(model, options));
+            candidate.description = analyze(photo, options_for(model, candidate.colour_mode, options));
             candidate.score = score_of(model, candidate.description, photo);
         } catch (const Error& e) {
-            throw Error("auto: " + model.name() + ": " + e.what());
+            throw Error("auto: " + label + ": " + e.what());
         }
         if (!progress) return;
         const std::lock_guard<std::mutex> lock(progress_mutex);
-        const std::string stage = model.name() + " scored";
-        progress(double(++finished) / double(models.size() + 1), stage.c_str());
+        const std::string stage = label + " scored";
+        progress(double(++finished) / double(candidates.size() + 1), stage.c_str());
     });
 
     // Fidelity first; among the candidates within model_choice_tolerance of the best penalty
@@ -139,17 +152,19 @@ std::string format_model_choice(const TextureDescription& description)
     };
     char line[256];
     std::string text;
-    std::snprintf(line, sizeof line, "%-8s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "penalty", "radial dB",
-                  "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
+    std::snprintf(line, sizeof line, "%-8s %-6s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
+                  "radial dB", "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
     text += line;
     for (const ModelScore& s : scores) {
-        std::snprintf(line, sizeof line, "%-8s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(), s.penalty,
+        const bool chosen = s.model == description.model && s.colour == to_string(description.colour_mode);
+        std::snprintf(line, sizeof line, "%-8s %-6s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
+                      s.colour.c_str(), s.penalty,
                       value(s.radial_log_psd_db, "%.2f").c_str(), value(s.polar_log_psd_db, "%.2f").c_str(),
                       value(s.w1_sigma, "%.3f").c_str(),
                       (value(100 * s.false_colour_rate, "%.2f") + " %").c_str(),
                       value(s.gradient_orientation_degrees, "%.2f").c_str(),
                       value(s.gradient_magnitude_w1, "%.3f").c_str(), s.bytes,
-                      s.model == description.model ? "  ← chosen" : "");
+                      chosen ? "  ← chosen" : "");
         text += line;
     }
     std::snprintf(line, sizeof line,

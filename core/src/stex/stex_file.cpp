@@ -209,7 +209,7 @@ void read_provenance(const Field& provenance, Provenance& result)
     for (const auto& [name, value] : provenance["options"].members()) result.options.emplace_back(name, value.string());
     if (!provenance.contains("model_choice")) return;
     for (const Field& entry : provenance["model_choice"].elements(-1, "candidates")) {
-        entry.expect_keys({"model", "penalty", "radial_log_psd_db", "polar_log_psd_db", "w1_sigma", "false_colour_rate",
+        entry.expect_keys({"model", "colour", "penalty", "radial_log_psd_db", "polar_log_psd_db", "w1_sigma", "false_colour_rate",
                            "gradient_orientation_degrees", "gradient_magnitude_w1", "bytes"});
         // A metric the images were too small for is written as null.
         const auto metric = [&](const char* key) {
@@ -218,6 +218,7 @@ void read_provenance(const Field& provenance, Provenance& result)
         };
         ModelScore& score = result.model_choice.emplace_back();
         score.model = entry["model"].string();
+        score.colour = entry["colour"].string();
         score.penalty = entry["penalty"].number();
         score.radial_log_psd_db = metric("radial_log_psd_db");
         score.polar_log_psd_db = metric("polar_log_psd_db");
@@ -274,6 +275,7 @@ Json to_json(const TextureDescription& description)
         for (const ModelScore& score : provenance.model_choice) {
             Json entry = Json::object();
             entry["model"] = score.model;
+            entry["colour"] = score.colour;
             entry["penalty"] = score.penalty;
             entry["radial_log_psd_db"] = metric(score.radial_log_psd_db);
             entry["polar_log_psd_db"] = metric(score.polar_log_psd_db);
@@ -341,6 +343,11 @@ void validate(const TextureDescription& description, const std::string& source)
         const ModelScore& score = provenance.model_choice[i];
         const std::string path = json_path("provenance.model_choice", i);
         if (!find_model(score.model)) json_fields::fail(source, path + ".model", "unknown model '" + score.model + "'");
+        try {
+            colour_mode_from_string(score.colour);
+        } catch (const Error& e) {
+            json_fields::fail(source, path + ".colour", e.what());
+        }
         if (!(score.penalty >= 0) || !std::isfinite(score.penalty))
             json_fields::fail(source, path + ".penalty", "must be a finite number ≥ 0, got " + number_text(score.penalty));
         if (score.bytes < 0) json_fields::fail(source, path + ".bytes", "must not be negative");

@@ -20,6 +20,8 @@ ModelInfo tiling_info()
                    "moment-filtered: any texture a crop shows, structure included; colour-mapped and phasor noise";
     info.doc = "docs/models/tiling.md";
     info.capabilities.analysis = true;
+    // Gravel: PCA colour 6.2 % false colour, rgb 0.3 % (docs/models/tiling.md).
+    info.automatic_colour_modes = {"pca", "rgb"};
     return info;
 }
 
