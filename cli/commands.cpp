@@ -58,7 +58,7 @@ CLI::Validator non_negative_number() { return finite_number_at_least_zero(true);
 
 std::vector<std::string> analysable_models()
 {
-    std::vector<std::string> names;
+    std::vector<std::string> names{automatic_model};
     for (const ModelInfo* model : registered_model_infos())
         if (model->capabilities.analysis) names.push_back(model->name);
     return names;
@@ -66,7 +66,9 @@ std::vector<std::string> analysable_models()
 
 std::string model_option_help()
 {
-    std::string help = "Texture model (stex models: what each can do):";
+    std::string help = "Texture model (stex models: what each can do):\n  auto: fit each model below, score its render "
+                       "against the photo (the table is printed and kept in the .stex), keep the closest; of those "
+                       "within 10 % of it, the smallest file";
     for (const ModelInfo* model : registered_model_infos())
         if (model->capabilities.analysis) help += "\n  " + model->name + ": " + model->summary + " (" + model->doc + ")";
     return help;
@@ -99,6 +101,7 @@ int AnalyzeCommand::run() const
     AnalysisOptions options;
     options.model = model;
     options.colour_mode = colour_mode_from_string(colour);
+    options.try_colour_modes = colour_option && colour_option->count() == 0;
     options.histogram = histogram_mode_from_string(histogram);
     options.histogram_knots = knots;
     options.max_bands = bands;
@@ -112,7 +115,8 @@ int AnalyzeCommand::run() const
     const TextureDescription description = analyze(image, options, terminal_progress_bar());
     write_stex(output, description);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("wrote %s (%s, %zu bytes) from %s (%dx%d) in %.2f s\n", output.c_str(), model.c_str(),
+    std::fputs(format_model_choice(description).c_str(), stdout);
+    std::printf("wrote %s (%s, %zu bytes) from %s (%dx%d) in %.2f s\n", output.c_str(), description.model.c_str(),
                 std::size_t(std::filesystem::file_size(output)), photo.c_str(), image.width, image.height, seconds);
     return 0;
 }

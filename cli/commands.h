@@ -17,12 +17,13 @@ namespace stex_cli {
 
 struct AnalyzeCommand {
     std::string photo, output;
-    std::string model = stochtex::AnalysisOptions().model, colour = "pca", histogram = "auto";
+    std::string model = stochtex::automatic_model, colour = "pca", histogram = "auto";
     std::string colour_space;  // empty: what the file says, else sRGB
     int knots = 10;
     int bands = 0;
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;
+    CLI::Option* colour_option = nullptr;  ///< to tell whether --colour was given
     /// Adds every registered model's declared analysis options (--psd, --impulses, --J, …).
     void add_model_options(CLI::App& command);
     int run() const;

@@ -59,8 +59,12 @@ int main(int argc, char** argv)
     // (name, range, default, doc) become options here, and the core checks their values.
     a->add_option("--model", analyze.model, model_option_help())
         ->check(CLI::IsMember(analysable_models()))->capture_default_str();
-    a->add_option("--colour", analyze.colour, "Colour mode: pca (decorrelated), rgb (independent), rgb-shared")
-        ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))->capture_default_str();
+    analyze.colour_option =
+        a->add_option("--colour", analyze.colour,
+                      "Colour mode: pca (decorrelated), rgb (independent), rgb-shared (with --model auto and no "
+                      "--colour, each model is also tried in the other modes it declares: tiling in rgb)")
+            ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))
+            ->capture_default_str();
     a->add_option("--histogram", analyze.histogram,
                   "Histogram matching: on, off, or auto (per channel, when it brings the histogram measurably closer)")
         ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();

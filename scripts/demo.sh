@@ -13,12 +13,20 @@ cmake --build "$root/build" -j"$(nproc)" --target stex stex_imageio >/dev/null
 stex="$root/build/cli/stex"
 mkdir -p "$out"
 name="$(basename "${photo%.*}")"
+# The model is chosen for the photo (--model auto, the default): the score table is printed.
 "$stex" analyze "$photo" -o "$out/$name.stex"
 "$stex" info "$out/$name.stex"
+# What the chosen model can do (the registry's capabilities) decides the solid and POV steps.
+can() {  # capability
+  "$stex" models --json | python3 -c 'import json, sys
+model = json.load(open(sys.argv[1]))["model"]
+sys.exit(0 if next(m for m in json.load(sys.stdin)["models"] if m["name"] == model)["capabilities"][sys.argv[2]] else 1)' \
+    "$out/$name.stex" "$1"
+}
 "$stex" render "$out/$name.stex" -o "$out/$name-core.exr"
 "$stex" render "$out/$name.stex" -o "$out/$name-core.png"
 "$stex" render "$out/$name.stex" -o "$out/$name-core-wide.png" --size 1024x512 --scale 4
-"$stex" render "$out/$name.stex" -o "$out/$name-core-solid.png" --solid --z 0.25
+if can solid; then "$stex" render "$out/$name.stex" -o "$out/$name-core-solid.png" --solid --z 0.25; fi
 "$stex" compare "$photo" "$out/$name.stex" -o "$out/$name-compare.png"
 # The OIIO plugin (docs/oiio-plugin.md): OIIO's own oiiotool reads the .stex as a MIP-mapped
 # image; write its level 0 at 1024² and its level 3 (128², each texel filtered by the model).
@@ -34,7 +42,9 @@ pov_render() {  # scene output.png|.exr include-dir [extra povray arguments...]
   povray -D "+L$dir" "+I$root/scenes/pov/$scene" "+O$image" "$@" >"${image%.*}.log" 2>&1 ||
     { cat "${image%.*}.log" >&2; exit 1; }
 }
-for mode in procedural baked; do
+pov_modes="baked"
+if can pov_procedural; then pov_modes="procedural baked"; fi
+for mode in $pov_modes; do
   mkdir -p "$out/pov-$mode"
   "$stex" pov "$out/$name.stex" -o "$out/pov-$mode/plane_texture.inc" --name Plane_Texture --mode "$mode"
   for format in exr png; do

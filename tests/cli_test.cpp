@@ -164,7 +164,7 @@ protected:
         photo = shared_dir / "photo.png";
         texture = shared_dir / "photo.stex";
         write_small_photo(photo, photo_size);
-        const RunResult r = run_stex({"analyze", photo.string(), "-o", texture.string()}, shared_dir);
+        const RunResult r = run_stex({"analyze", photo.string(), "-o", texture.string(), "--model", "wavelet"}, shared_dir);
         ASSERT_TRUE(r.exited && r.code == 0) << "analyze failed: " << r;
     }
 
@@ -394,11 +394,28 @@ TEST_F(Cli, HelpListsSubcommandsAndOptions)
 
 // ---- Happy path ---------------------------------------------------------------------------------
 
+TEST_F(Cli, AnalyzeChoosesTheModelByDefaultAndSaysHow)
+{
+    const fs::path chosen = dir / "chosen.stex";
+    const RunResult r = stex({"analyze", photo.string(), "-o", chosen.string()});
+    expect_success(r);
+    // The score table: a row per analysable model, the choice marked, the rule stated.
+    for (const char* part : {"penalty", "wavelet", "gabor", "tiling", "lrp", "← chosen", "rule: lowest penalty"})
+        EXPECT_TRUE(contains(r.out, part)) << part << " in\n" << r.out;
+    const RunResult info = stex({"info", chosen.string()});
+    expect_success(info);
+    EXPECT_TRUE(contains(info.out, "chosen by    auto (fidelity penalty: wavelet ")) << info.out;
+    // A model's own option goes to the models that declare it; one no model has is an error.
+    expect_success(stex({"analyze", photo.string(), "-o", chosen.string(), "--impulses", "8"}));
+    // --help names auto as the default.
+    EXPECT_TRUE(contains(stex({"analyze", "--help"}).out, "auto: fit each model")) << "help";
+}
+
 TEST_F(Cli, AnalyzeRenderInfoCompareMorph)
 {
     // analyze (again, into this test's folder, with non-default options)
     const fs::path stex_path = dir / "texture.stex";
-    expect_success(stex({"analyze", photo.string(), "-o", stex_path.string(), "--colour", "rgb", "--seed", "5"}));
+    expect_success(stex({"analyze", photo.string(), "-o", stex_path.string(), "--model", "wavelet", "--colour", "rgb", "--seed", "5"}));
     ASSERT_TRUE(fs::exists(stex_path));
     EXPECT_GT(fs::file_size(stex_path), 0u);
 

@@ -233,7 +233,7 @@ TEST(HardeningCli, RenderAndBakeRejectBadCoordinatesNamingTheOption)
 {
     const fs::path dir = stochtex::test::temp_dir("BadCoordinates");
     const std::string photo = stochtex::test::repo_exemplar("concrete_512.png");
-    ASSERT_TRUE(run_stex({"analyze", photo, "-o", (dir / "w.stex").string()}, dir).succeeded());
+    ASSERT_TRUE(run_stex({"analyze", photo, "-o", (dir / "w.stex").string(), "--model", "wavelet"}, dir).succeeded());
     ASSERT_TRUE(run_stex({"analyze", photo, "-o", (dir / "l.stex").string(), "--model", "lrp"}, dir).succeeded());
     const std::string out = (dir / "o.exr").string();
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
@@ -281,7 +281,7 @@ TEST(HardeningCli, FailedWriteKeepsThePreviousOutput)
     const fs::path dir = stochtex::test::temp_dir("FailedWrite");
     const std::string photo = stochtex::test::repo_exemplar("concrete_512.png");
     const std::string texture = (dir / "w.stex").string();
-    ASSERT_TRUE(run_stex({"analyze", photo, "-o", texture}, dir).succeeded());
+    ASSERT_TRUE(run_stex({"analyze", photo, "-o", texture, "--model", "wavelet"}, dir).succeeded());
     for (const char* name : {"old.exr", "old.png"}) {
         const std::string out = (dir / name).string();
         ASSERT_TRUE(run_stex({"render", texture, "-o", out, "--size", "16x16"}, dir).succeeded());
@@ -302,7 +302,7 @@ TEST(HardeningCli, FailedWriteKeepsThePreviousOutput)
     }
     // A folder that does not exist: an error naming the file, nothing written.
     expect_clean_error(run_stex({"render", texture, "-o", (dir / "missing" / "o.exr").string()}, dir), "o.exr");
-    expect_clean_error(run_stex({"analyze", photo, "-o", (dir / "missing" / "t.stex").string()}, dir), "t.stex");
+    expect_clean_error(run_stex({"analyze", photo, "-o", (dir / "missing" / "t.stex").string(), "--model", "wavelet"}, dir), "t.stex");
 }
 
 // The ptm writers (coefficient maps, normal maps, light lists) go through the same safe write:
@@ -371,7 +371,7 @@ TEST(HardeningCli, InterruptedBakeKeepsThePreviousOutput)
 {
     const fs::path dir = stochtex::test::temp_dir("InterruptedBake");
     const std::string texture = (dir / "w.stex").string(), out = (dir / "map.exr").string();
-    ASSERT_TRUE(run_stex({"analyze", stochtex::test::repo_exemplar("concrete_512.png"), "-o", texture}, dir).succeeded());
+    ASSERT_TRUE(run_stex({"analyze", stochtex::test::repo_exemplar("concrete_512.png"), "-o", texture, "--model", "wavelet"}, dir).succeeded());
     ASSERT_TRUE(run_stex({"bake", texture, "-o", out, "--size", "64"}, dir).succeeded());
     const std::string before = read_bytes(out);
     const std::vector<std::string> files = files_in(dir);

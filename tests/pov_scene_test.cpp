@@ -158,7 +158,7 @@ protected:
     {
         shared_dir = test::temp_dir("pov-scene-shared");
         texture_path = shared_dir / "concrete.stex";
-        const RunResult r = stex({"analyze", test::repo_exemplar("concrete_512.png"), "-o", texture_path.string()}, shared_dir);
+        const RunResult r = stex({"analyze", test::repo_exemplar("concrete_512.png"), "-o", texture_path.string(), "--model", "wavelet"}, shared_dir);
         ASSERT_TRUE(r.exited && r.code == 0) << "analyze failed: " << r;
     }
 
@@ -321,7 +321,7 @@ protected:
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         dir = test::temp_dir(std::string("pov-cli-") + info->name());
         texture = dir / "t.stex";
-        const RunResult r = stex({"analyze", test::repo_exemplar("concrete_512.png"), "-o", texture.string(), "--bands", "4"}, dir);
+        const RunResult r = stex({"analyze", test::repo_exemplar("concrete_512.png"), "-o", texture.string(), "--model", "wavelet", "--bands", "4"}, dir);
         ASSERT_TRUE(r.exited && r.code == 0) << r;
     }
     fs::path dir, texture;

@@ -274,8 +274,12 @@ class STOCHTEX_OT_analyze(_StexPipeline, bpy.types.Operator):
         settings.band_gains = [1.0] * len(settings.band_gains)
         settings.use_histograms = True
         _finish_render(self, context, self.mat, settings, self.texture_name, content)
-        self.report({"INFO"}, "stochtex: %s analysed (%d bands) into %s" % (
-            self.texture_name, stex_cli.band_count(stex_cli.parse_stex(content)), self.mat.name))
+        data = stex_cli.parse_stex(content)
+        model, scores = stex_cli.model_choice(data)
+        settings.chosen_model = model
+        chosen = "%s (auto: %s)" % (model, ", ".join("%s %.2f" % item for item in scores.items())) if scores else model
+        self.report({"INFO"}, "stochtex: %s analysed as %s (%d bands) into %s" % (
+            self.texture_name, chosen, stex_cli.band_count(data), self.mat.name))
 
 
 class STOCHTEX_OT_rebuild(_StexPipeline, bpy.types.Operator):

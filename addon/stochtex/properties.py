@@ -58,7 +58,10 @@ class StochtexSettings(bpy.types.PropertyGroup):
     image: PointerProperty(type=bpy.types.Image, name="Photo",
                            description="The photo to analyse (empty: the active Image Texture node's image)")
     model: EnumProperty(name="Model", items=_models,
-                        description="The texture model (the core's registry; the first is the core's default)")
+                        description="The texture model: Auto (the analysis chooses, the CLI's default) or one of "
+                                    "the core's registry")
+    chosen_model: StringProperty(name="Analysed as", default="",
+                                 description="The model the last analysis used (with Auto: the one it chose)")
     histogram: EnumProperty(name="Histogram", default="auto", items=[
         ("auto", "Auto", "Match each channel's histogram where it measurably helps"),
         ("on", "On", "Always match the photo's histograms"),

@@ -55,10 +55,28 @@ def list_models(executable):
         raise StexError("%s models --json: unexpected output (%s)" % (executable, error)) from None
 
 
+AUTO_MODEL = ("auto", "Auto", "Fit every model, score each against the photo and keep the closest "
+              "(of those within 10 %, the smallest file); the panel then shows the choice")
+
+
 def analysable_models(models):
-    """(identifier, name, description) for each model that analyses photos: the panel's choices."""
-    return [(m["name"], m["name"].capitalize(), "%s (%s)" % (m["summary"], m["doc"]))
-            for m in models if m.get("capabilities", {}).get("analysis")]
+    """(identifier, name, description) for each model that analyses photos, after "Auto" (the
+    analysis chooses; the CLI's default): the panel's choices."""
+    return [AUTO_MODEL] + [(m["name"], m["name"].capitalize(), "%s (%s)" % (m["summary"], m["doc"]))
+                           for m in models if m.get("capabilities", {}).get("analysis")]
+
+
+def _candidate(model, colour):
+    return model if colour == "pca" else "%s/%s" % (model, colour)
+
+
+def model_choice(data):
+    """The candidate a parsed .stex is ("tiling", or "tiling/rgb" when fitted in another colour
+    mode than pca) and, when the analysis chose it, every candidate's penalty (candidate ->
+    penalty, lower is closer to the photo); {} when a model was named."""
+    scores = data.get("provenance", {}).get("model_choice", [])
+    chosen = _candidate(data.get("model", ""), data.get("colour", {}).get("mode", "pca"))
+    return chosen, {_candidate(s["model"], s["colour"]): s["penalty"] for s in scores}
 
 
 def bake_args(texture, output, size, half=True):

@@ -16,6 +16,8 @@ def draw_settings(layout, mat):
     row.prop(settings, "histogram", text="")
     box.prop(settings, "unit_size")
     box.operator("stochtex.analyze", icon="SHADING_TEXTURE")
+    if settings.chosen_model:
+        box.label(text="Analysed as: " + settings.chosen_model, icon="CHECKMARK")
 
     box = layout.box()
     box.label(text="2. Render", icon="MATERIAL")

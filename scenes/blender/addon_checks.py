@@ -69,7 +69,7 @@ bpy.data.images.remove(ghost)
 from stochtex import stex_cli  # noqa: E402  (the installed add-on's own module)
 work = stex_cli.WorkDir()
 stex = stex_cli.find_stex()
-stex_cli.run(stex, stex_cli.analyze_args(args.photo, work.file("t.stex")))
+stex_cli.run(stex, stex_cli.analyze_args(args.photo, work.file("t.stex"), "wavelet"))
 job = stex_cli.StexJob(stex, stex_cli.bake_args(work.file("t.stex"), work.file("big.exr"), 8192))
 time.sleep(0.5)
 running = job.poll() is None
@@ -80,7 +80,15 @@ checks["cancelled bake"] = {"ok": running and "big.exr" not in left and not os.p
                             "detail": "running when cancelled: %s; files after cancel: %s; progress seen %.2f"
                                       % (running, left, job.fraction)}
 
+# Auto (the panel's default): the analysis chooses a model and the panel shows which.
+result = bpy.ops.stochtex.analyze(filepath=args.photo)
+analysable = [m[0] for m in stex_cli.analysable_models(stex_cli.list_models(stex))][1:]
+checks["auto shows its choice"] = {
+    "ok": result == {"FINISHED"} and mat.stochtex.model == "auto" and mat.stochtex.chosen_model.split("/")[0] in analysable,
+    "detail": "%s, model %s, analysed as %r" % (result, mat.stochtex.model, mat.stochtex.chosen_model)}
+
 # A good run, then every tweak and a morph (of the texture with itself, at t = 0.5).
+mat.stochtex.model = "wavelet"
 result = bpy.ops.stochtex.analyze(filepath=args.photo)
 checks["analyse"] = {"ok": result == {"FINISHED"} and mat.stochtex.stex_text is not None, "detail": str(result)}
 settings = mat.stochtex

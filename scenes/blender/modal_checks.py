@@ -41,6 +41,7 @@ def start_cancelled_bake():
     window, override = ui_context()
     state["before"] = inventory()
     mat.stochtex.bake_size = 8192  # long enough to cancel half-way
+    mat.stochtex.model = "wavelet"  # a quick analysis: Escape lands in the bake
     with bpy.context.temp_override(**override):
         state["invoke"] = bpy.ops.stochtex.analyze("INVOKE_DEFAULT", filepath=photo)
     state["ticks"] = []

@@ -30,7 +30,8 @@ class StexCliTest(unittest.TestCase):
         cls.dir = tempfile.mkdtemp(prefix="stochtex-addon-test-")
         cls.stex = stex_cli.find_stex()
         cls.texture = os.path.join(cls.dir, "t.stex")
-        stex_cli.run(cls.stex, stex_cli.analyze_args(PHOTO, cls.texture, histogram="on", seed=3, unit_size_m=0.5))
+        stex_cli.run(cls.stex, stex_cli.analyze_args(PHOTO, cls.texture, "wavelet", histogram="on", seed=3,
+                                                     unit_size_m=0.5))
         with open(cls.texture) as f:
             cls.text = f.read()
 
@@ -50,12 +51,21 @@ class StexCliTest(unittest.TestCase):
         names = [m["name"] for m in models]
         self.assertEqual(len(names), len(set(names)))
         choices = stex_cli.analysable_models(models)
-        # Exactly the models whose capabilities say they analyse photos, in the registry's order.
-        self.assertEqual([c[0] for c in choices], [m["name"] for m in models if m["capabilities"]["analysis"]])
-        self.assertGreaterEqual(len(choices), 1)
-        # The first is the core's default: analysing without --model gives it.
-        with open(self.texture) as f:
-            self.assertEqual(json.load(f)["model"], choices[0][0])
+        # "auto" (the CLI's default), then exactly the models whose capabilities say they analyse
+        # photos, in the registry's order.
+        analysable = [m["name"] for m in models if m["capabilities"]["analysis"]]
+        self.assertEqual([c[0] for c in choices], ["auto"] + analysable)
+        self.assertGreaterEqual(len(choices), 2)
+        # The first is the CLI's default: analysing without --model chooses, and says how.
+        chosen = os.path.join(self.dir, "chosen.stex")
+        stex_cli.run(self.stex, stex_cli.analyze_args(PHOTO, chosen))
+        with open(chosen) as f:
+            model, scores = stex_cli.model_choice(json.load(f))
+        # Every analysable model is a candidate (tiling also in rgb colour).
+        self.assertEqual(sorted(set(s.split("/")[0] for s in scores)), sorted(analysable))
+        self.assertIn(model, scores)
+        # The rule: within 10 % of the lowest penalty.
+        self.assertLessEqual(scores[model], 1.10 * min(scores.values()) + 1e-12)
         for model in models:
             self.assertTrue(model["parameters"], model["name"])
 

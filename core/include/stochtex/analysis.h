@@ -16,9 +16,24 @@ enum class HistogramMode { off, on, automatic };
 const char* to_string(HistogramMode mode);
 HistogramMode histogram_mode_from_string(const std::string& name);  // throws Error
 
+/// `AnalysisOptions::model` that lets the analysis choose: every registered model that can
+/// analyse photos is fitted, its render (at the photo's pixel scale, at most 384² pixels) is
+/// compared with the photo (stochtex/metrics.h: fidelity_penalty), and the lowest penalty
+/// wins; candidates within model_choice_tolerance of it count as equally faithful and the one
+/// with the smallest file is kept (a photo wavelet serves well keeps its 2 kB texture). Every
+/// candidate's scores go into the provenance (Provenance::model_choice).
+inline constexpr const char* automatic_model = "auto";
+inline constexpr double model_choice_tolerance = 0.10;
+
 struct AnalysisOptions {
-    std::string model = "wavelet";  ///< a registered model that can analyse photos (stochtex/model.h)
+    /// A registered model that can analyse photos (stochtex/model.h), or automatic_model. The
+    /// library's default stays the one cheap model; `stex analyze` defaults to automatic_model.
+    std::string model = "wavelet";
     ColourMode colour_mode = ColourMode::pca;
+    /// automatic_model only: fit each model with every colour mode it declares worth trying
+    /// (ModelInfo::automatic_colour_modes) instead of colour_mode alone — for when the user
+    /// did not choose one (`stex analyze` without --colour).
+    bool try_colour_modes = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports
@@ -41,5 +56,9 @@ constexpr double max_analysis_value = 1e10;
 /// (too small, non-finite values or values beyond ±max_analysis_value, unknown model).
 TextureDescription analyze(const Image& photo, const AnalysisOptions& options,
                            const ProgressCallback& progress = {});
+
+/// The score table of a description whose model analysis chose (empty when a model was named):
+/// one row per candidate, the chosen one marked, and the rule.
+std::string format_model_choice(const TextureDescription& description);
 
 }  // namespace stochtex

@@ -109,6 +109,8 @@ double false_colour_rate(const Image& reference, const Image& test);
 
 /// 1-Wasserstein distance between the empirical distributions of two samples (any sizes).
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b);
+/// The same of two samples already sorted ascending (to compare many samples with one reference).
+double wasserstein1_of_sorted(const std::vector<double>& sorted_a, const std::vector<double>& sorted_b);
 
 std::array<double, 3> channel_means(const Image& rgb);
 std::array<std::array<double, 3>, 3> colour_covariance(const Image& rgb);
@@ -134,6 +136,24 @@ struct ComparisonReport {
     CentredSpectrum spectrum_reference_luma, spectrum_test_luma;
 };
 ComparisonReport compare_images(const Image& reference, const Image& test);
+
+/// What a synthesis is held to against its photo (docs/metrics.md, "Fidelity"): at or under
+/// each target a person comparing the two side by side sees no difference of that kind.
+struct FidelityTargets {
+    double radial_log_psd_db = 1.5;            ///< mean over RGB of log_psd_db
+    double polar_log_psd_db = 1.5;             ///< polar_log_psd_db (luma)
+    double w1_sigma = 0.10;                    ///< the worst RGB channel's w1_relative
+    double false_colour_rate = 0.01;           ///< a fraction
+    double gradient_orientation_degrees = 5;   ///< gradient_orientation_degrees
+    double gradient_magnitude_w1 = 0.10;       ///< gradient_magnitude_w1
+};
+
+/// One number for "how far is this synthesis from its photo": the mean over the six metrics of
+/// FidelityTargets of metric / target (1: every metric on its target; lower is closer). A mean,
+/// not a maximum, so a model that fails one target by a little and meets the rest well beats one
+/// that fails several; each term is capped at 10 so one unmeasurable or extreme metric cannot
+/// hide the others. A metric that could not be measured (NaN: images too small) counts 10.
+double fidelity_penalty(const ComparisonReport& report, const FidelityTargets& targets = {});
 std::string format_report(const ComparisonReport& report);
 
 }  // namespace stochtex

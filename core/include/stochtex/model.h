@@ -42,6 +42,11 @@ struct ModelInfo {
     ModelCapabilities capabilities;
     std::vector<ParameterInfo> parameters;        ///< the .stex "parameters" block
     std::vector<ParameterInfo> analysis_options;  ///< `stex analyze` options of this model
+    /// The colour modes (`--colour` values) `analyze --model auto` fits this model with when no
+    /// colour mode is given: pca, the analysis's default, for every model; a model whose
+    /// synthesis treats all channels alike (tiling blends them with the same weights) adds rgb,
+    /// which keeps chroma extremes that never co-occur in the photo from meeting.
+    std::vector<std::string> automatic_colour_modes{"pca"};
 };
 
 /// Model names, in registration order (the built-in models first).

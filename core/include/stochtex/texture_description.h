@@ -95,6 +95,21 @@ struct ImageLayout {
     std::string channels = "RGB";
 };
 
+/// How one candidate scored when `analyze --model auto` chose the model (stochtex/analysis.h):
+/// the metrics of its render against the photo (stochtex/metrics.h) and the size of its file.
+struct ModelScore {
+    std::string model;
+    std::string colour = "pca";               ///< the colour mode it was fitted with
+    double penalty = 0;                       ///< fidelity_penalty(): lower is closer to the photo
+    double radial_log_psd_db = 0;             ///< mean over RGB
+    double polar_log_psd_db = 0;              ///< 2D (oriented) log-PSD distance of luma
+    double w1_sigma = 0;                      ///< the worst RGB channel's W1/σ
+    double false_colour_rate = 0;             ///< a fraction
+    double gradient_orientation_degrees = 0;
+    double gradient_magnitude_w1 = 0;
+    long long bytes = 0;                      ///< its .stex file (embedded images included)
+};
+
 /// Where a description came from: enough to reproduce the analysis.
 struct Provenance {
     std::string source;              ///< file name of the photo (no directories)
@@ -104,6 +119,8 @@ struct Provenance {
     std::string tool;                ///< "stochtex <version>"
     /// Analysis options as name/value strings, in a fixed order (kept for round-trip identity).
     std::vector<std::pair<std::string, std::string>> options;
+    /// `--model auto`: every candidate's score, in registry order (empty when a model was named).
+    std::vector<ModelScore> model_choice;
 };
 
 struct TextureDescription {

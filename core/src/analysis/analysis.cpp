@@ -2,6 +2,7 @@
 #include <stochtex/error.h>
 #include <stochtex/stex_file.h>
 
+#include "analysis/model_choice.h"
 #include "colour/colour_basis.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
@@ -62,6 +63,7 @@ HistogramMode histogram_mode_from_string(const std::string& name)
 
 TextureDescription analyze(const Image& photo, const AnalysisOptions& options, const ProgressCallback& progress)
 {
+    if (options.model == automatic_model) return analyze_choosing_model(photo, options, progress);
     const Model& model = model_named(options.model, "analysis", "--model");
     if (!model.info().capabilities.analysis) throw Error("model '" + options.model + "' cannot analyse photos");
     // The model's own options first: a typo costs nothing.

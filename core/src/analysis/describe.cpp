@@ -11,9 +11,6 @@
 
 namespace stochtex {
 
-namespace {
-}  // namespace
-
 std::string describe(const TextureDescription& d)
 {
     std::ostringstream out;
@@ -24,6 +21,14 @@ std::string describe(const TextureDescription& d)
     if (!d.provenance.source.empty())
         out << "source       " << d.provenance.source << " (" << d.provenance.source_width << "x"
             << d.provenance.source_height << ", " << d.provenance.input_colour_space << ")\n";
+    if (!d.provenance.model_choice.empty()) {
+        // `--model auto`: every candidate's penalty (lower is closer to the photo).
+        std::string scores;
+        for (const ModelScore& s : d.provenance.model_choice)
+            scores += (scores.empty() ? "" : ", ") + s.model + (s.colour == "pca" ? "" : "/" + s.colour) +
+                      info_text(" %.3f", s.penalty);
+        out << "chosen by    auto (fidelity penalty: " << scores << ")\n";
+    }
     out << "colour       " << to_string(d.colour_mode) << ", " << d.colour_space << "\n";
     out << "mean         " << info_text("%.5f %.5f %.5f", d.mean[0], d.mean[1], d.mean[2]) << "\n";
     for (int r = 0; r < 3; ++r)

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <iterator>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -357,7 +358,11 @@ double wasserstein1(const std::vector<float>& a, const std::vector<float>& b) {
     std::vector<double> sorted_a(a.begin(), a.end()), sorted_b(b.begin(), b.end());
     std::sort(sorted_a.begin(), sorted_a.end());
     std::sort(sorted_b.begin(), sorted_b.end());
+    return wasserstein1_of_sorted(sorted_a, sorted_b);
+}
 
+double wasserstein1_of_sorted(const std::vector<double>& sorted_a, const std::vector<double>& sorted_b) {
+    if (sorted_a.empty() || sorted_b.empty()) throw Error("wasserstein1: a sample is empty");
     // W1 = ∫ |F_a(x) − F_b(x)| dx; both empirical CDFs are steps, constant between consecutive
     // values of the merged samples, so the integral is an exact sum over those intervals.
     const double inf = std::numeric_limits<double>::infinity();
@@ -565,6 +570,24 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
     }
     report.false_colour_rate = false_colour_rate(reference, test);
     return report;
+}
+
+double fidelity_penalty(const ComparisonReport& report, const FidelityTargets& targets) {
+    constexpr double kTermCap = 10;
+    const auto term = [&](double metric, double target) {
+        return std::isnan(metric) ? kTermCap : std::min(kTermCap, metric / target);
+    };
+    const double radial = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
+    const double w1 = std::max({report.w1_relative[0], report.w1_relative[1], report.w1_relative[2]});
+    const double terms[] = {term(radial, targets.radial_log_psd_db),
+                            term(report.polar_log_psd_db, targets.polar_log_psd_db),
+                            term(w1, targets.w1_sigma),
+                            term(report.false_colour_rate, targets.false_colour_rate),
+                            term(report.gradient_orientation_degrees, targets.gradient_orientation_degrees),
+                            term(report.gradient_magnitude_w1, targets.gradient_magnitude_w1)};
+    double sum = 0;
+    for (double t : terms) sum += t;
+    return sum / std::size(terms);
 }
 
 std::string format_report(const ComparisonReport& report) {

@@ -199,7 +199,7 @@ void read_histograms(const Field& histograms, TextureDescription& description)
 
 void read_provenance(const Field& provenance, Provenance& result)
 {
-    provenance.expect_keys({"source", "source_size", "input_colour_space", "tool", "options"});
+    provenance.expect_keys({"source", "source_size", "input_colour_space", "tool", "options"}, {"model_choice"});
     result.source = provenance["source"].string();
     std::vector<Field> size = provenance["source_size"].elements(2, "numbers");
     result.source_width = static_cast<int>(size[0].integer(0, std::numeric_limits<int>::max()));
@@ -207,6 +207,27 @@ void read_provenance(const Field& provenance, Provenance& result)
     result.input_colour_space = provenance["input_colour_space"].string();
     result.tool = provenance["tool"].string();
     for (const auto& [name, value] : provenance["options"].members()) result.options.emplace_back(name, value.string());
+    if (!provenance.contains("model_choice")) return;
+    for (const Field& entry : provenance["model_choice"].elements(-1, "candidates")) {
+        entry.expect_keys({"model", "colour", "penalty", "radial_log_psd_db", "polar_log_psd_db", "w1_sigma", "false_colour_rate",
+                           "gradient_orientation_degrees", "gradient_magnitude_w1", "bytes"});
+        // A metric the images were too small for is written as null.
+        const auto metric = [&](const char* key) {
+            const Field field = entry[key];
+            return field.is_null() ? std::numeric_limits<double>::quiet_NaN() : field.number();
+        };
+        ModelScore& score = result.model_choice.emplace_back();
+        score.model = entry["model"].string();
+        score.colour = entry["colour"].string();
+        score.penalty = entry["penalty"].number();
+        score.radial_log_psd_db = metric("radial_log_psd_db");
+        score.polar_log_psd_db = metric("polar_log_psd_db");
+        score.w1_sigma = metric("w1_sigma");
+        score.false_colour_rate = metric("false_colour_rate");
+        score.gradient_orientation_degrees = metric("gradient_orientation_degrees");
+        score.gradient_magnitude_w1 = metric("gradient_magnitude_w1");
+        score.bytes = entry["bytes"].integer(0, std::numeric_limits<long long>::max());
+    }
 }
 
 // ---- Writing ------------------------------------------------------------------------------------
@@ -248,6 +269,24 @@ Json to_json(const TextureDescription& description)
     source["tool"] = provenance.tool;
     source["options"] = Json::object();
     for (const auto& [name, value] : provenance.options) source["options"][name] = value;
+    if (!provenance.model_choice.empty()) {
+        Json& candidates = source["model_choice"] = Json::array();
+        const auto metric = [](double value) { return std::isnan(value) ? Json() : Json(value); };
+        for (const ModelScore& score : provenance.model_choice) {
+            Json entry = Json::object();
+            entry["model"] = score.model;
+            entry["colour"] = score.colour;
+            entry["penalty"] = score.penalty;
+            entry["radial_log_psd_db"] = metric(score.radial_log_psd_db);
+            entry["polar_log_psd_db"] = metric(score.polar_log_psd_db);
+            entry["w1_sigma"] = metric(score.w1_sigma);
+            entry["false_colour_rate"] = metric(score.false_colour_rate);
+            entry["gradient_orientation_degrees"] = metric(score.gradient_orientation_degrees);
+            entry["gradient_magnitude_w1"] = metric(score.gradient_magnitude_w1);
+            entry["bytes"] = score.bytes;
+            candidates.push_back(std::move(entry));
+        }
+    }
 
     if (description.image) {
         // Written in full: a file states the layout it was given, whatever the defaults become.
@@ -300,6 +339,19 @@ void validate(const TextureDescription& description, const std::string& source)
     for (const auto& option : provenance.options)
         if (!option_names.insert(option.first).second)
             json_fields::fail(source, "provenance.options." + option.first, "duplicate option");
+    for (std::size_t i = 0; i < provenance.model_choice.size(); ++i) {
+        const ModelScore& score = provenance.model_choice[i];
+        const std::string path = json_path("provenance.model_choice", i);
+        if (!find_model(score.model)) json_fields::fail(source, path + ".model", "unknown model '" + score.model + "'");
+        try {
+            colour_mode_from_string(score.colour);
+        } catch (const Error& e) {
+            json_fields::fail(source, path + ".colour", e.what());
+        }
+        if (!(score.penalty >= 0) || !std::isfinite(score.penalty))
+            json_fields::fail(source, path + ".penalty", "must be a finite number ≥ 0, got " + number_text(score.penalty));
+        if (score.bytes < 0) json_fields::fail(source, path + ".bytes", "must not be negative");
+    }
     if (description.image) check_image_layout(*description.image, source);
 }
 

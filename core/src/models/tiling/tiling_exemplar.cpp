@@ -1,10 +1,13 @@
 #include "models/tiling/tiling_exemplar.h"
 
+#include "colour/histogram_map.h"
+
 #include "spectra/fft.h"
 #include "stex/quantised_image.h"
 #include "models/tiling/tiling_parameters.h"
 
 #include <stochtex/error.h>
+#include <stochtex/metrics.h>
 #include <stochtex/models/tiling_parameters.h>
 
 #include <algorithm>
@@ -19,9 +22,98 @@ int power_of_two_floor(int n)
     return p;
 }
 
-std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height)
+namespace {
+
+/// Every step-th value of every step-th row of a plane's region, sorted (a distribution's
+/// sample: W1 to within a few thousandths of σ at 16k values).
+std::vector<double> sorted_sample(const std::vector<float>& plane, int width, int x0, int y0, int w, int h, int step)
 {
-    const int x0 = (width - crop_width) / 2, y0 = (height - crop_height) / 2;
+    std::vector<double> sample;
+    sample.reserve(std::size_t(w / step + 1) * (h / step + 1));
+    for (int y = y0; y < y0 + h; y += step)
+        for (int x = x0; x < x0 + w; x += step) sample.push_back(plane[std::size_t(y) * width + x]);
+    std::sort(sample.begin(), sample.end());
+    return sample;
+}
+
+std::vector<float> region(const std::vector<float>& plane, int width, int x0, int y0, int w, int h)
+{
+    std::vector<float> crop(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y) std::copy_n(&plane[std::size_t(y0 + y) * width + x0], w, &crop[std::size_t(y) * w]);
+    return crop;
+}
+
+/// At most this many crop positions per axis are tried, evenly spaced from edge to edge.
+constexpr int crop_positions_per_axis = 5;
+/// The spectrum is compared for this many of the positions whose value distributions match best.
+constexpr int crops_with_spectrum_compared = 3;
+
+}  // namespace
+
+CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                      int crop_width, int crop_height)
+{
+    const CropOrigin centred{(width - crop_width) / 2, (height - crop_height) / 2};
+    if (crop_width == width && crop_height == height) return centred;
+    const FidelityTargets targets;
+    // The whole photo's distributions, sampled to about 64k values; the crops' to about 16k.
+    const int whole_step = std::max(1, int(std::sqrt(double(width) * height / 65536.0)));
+    const int crop_step = std::max(1, int(std::sqrt(double(crop_width) * crop_height / 16384.0)));
+    std::array<std::vector<double>, 3> whole;
+    std::array<double, 3> sigma{};
+    for (int c = 0; c < 3; ++c) {
+        whole[c] = sorted_sample(channels[c], width, 0, 0, width, height, whole_step);
+        double sum = 0, sum2 = 0;
+        for (double v : whole[c]) sum += v, sum2 += v * v;
+        const double n = double(whole[c].size());
+        sigma[c] = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+    }
+    // Mean, σ and histogram at once: each channel's W1 to the whole photo's, in its σ (the
+    // decorrelated channels are uncorrelated over the photo; a crop's own correlation shows in
+    // the channels' distributions of the rendered colours, which this sees through each axis).
+    struct Scored {
+        CropOrigin origin;
+        double w1_term = 0, total = 0;
+    };
+    std::vector<Scored> scored;
+    const auto positions = [](int free, int count) {
+        std::vector<int> result;
+        for (int i = 0; i < count; ++i) result.push_back(count == 1 ? free / 2 : int(std::lround(double(free) * i / (count - 1))));
+        return result;
+    };
+    const int nx = width > crop_width ? crop_positions_per_axis : 1, ny = height > crop_height ? crop_positions_per_axis : 1;
+    std::vector<CropOrigin> origins{centred};  // first: it wins ties
+    for (int y0 : positions(height - crop_height, ny))
+        for (int x0 : positions(width - crop_width, nx))
+            if (x0 != centred.x || y0 != centred.y) origins.push_back({x0, y0});
+    for (const CropOrigin& origin : origins) {
+        double w1 = 0;
+        for (int c = 0; c < 3; ++c)
+            if (sigma[c] > 0)
+                w1 = std::max(w1, wasserstein1_of_sorted(sorted_sample(channels[c], width, origin.x, origin.y, crop_width,
+                                                                       crop_height, crop_step),
+                                                         whole[c]) / sigma[c]);
+        scored.push_back({origin, w1 / targets.w1_sigma, 0});
+    }
+    // Then the spectrum of the main channel (the first: PCA's largest variance) for the best few,
+    // each term in units of its fidelity target, as the automatic model choice weighs them.
+    std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.w1_term < b.w1_term; });
+    scored.resize(std::min<std::size_t>(scored.size(), crops_with_spectrum_compared));
+    const RadialPsd whole_psd = radial_psd(channels[0], width, height);
+    for (Scored& s : scored) {
+        const RadialPsd crop_psd = radial_psd(region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
+                                              crop_width, crop_height);
+        s.total = s.w1_term + log_psd_distance_db(crop_psd, whole_psd) / targets.radial_log_psd_db;
+    }
+    return std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.total < b.total; })
+        ->origin;
+}
+
+std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
+                                 CropOrigin origin)
+{
+    if (origin.x < 0) origin = {(width - crop_width) / 2, (height - crop_height) / 2};
+    const int x0 = origin.x, y0 = origin.y;
     std::vector<float> crop(std::size_t(crop_width) * crop_height);
     for (int y = 0; y < crop_height; ++y)
         std::copy_n(&plane[std::size_t(y0 + y) * width + x0], crop_width, &crop[std::size_t(y) * crop_width]);
@@ -44,15 +136,27 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
     if (crop_width < min_tiling_exemplar_side || crop_height < min_tiling_exemplar_side)
         throw Error("image is " + std::to_string(width) + "x" + std::to_string(height) + ", too small for a tiling exemplar (at least " +
                     std::to_string(min_tiling_exemplar_side) + "x" + std::to_string(min_tiling_exemplar_side) + ")");
+    const CropOrigin origin = representative_crop_origin(channels, width, height, crop_width, crop_height);
     std::vector<std::vector<float>> planes;
     for (int c = 0; c < 3; ++c) {
-        planes.push_back(periodic_crop(channels[c], width, height, crop_width, crop_height));
-        if (!histograms[c].enabled()) continue;
-        double sum = 0, sum2 = 0;
-        for (float v : channels[c]) sum += v, sum2 += double(v) * v;
-        const double n = double(channels[c].size()), sigma = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
-        if (sigma > 0)
-            for (float& v : planes.back()) v = float(v / sigma);
+        std::vector<float>& plane = planes.emplace_back(periodic_crop(channels[c], width, height, crop_width, crop_height, origin));
+        // Even the most representative crop holds less of the photo's large-scale variation than
+        // the whole photo does (and the periodic component removes a little more): its values
+        // are given the whole photo's distribution, so the texture's histogram and contrast are
+        // the photo's and the crop keeps its structure (its ranks, hence its spectrum's shape).
+        const EmpiricalDistribution crop_distribution(plane);
+        if (!(crop_distribution.stddev() > 0)) continue;
+        if (histograms[c].enabled()) {
+            // The map's input: standard-normal by the crop's own ranks (Heitz–Neyret's T).
+            gaussianize(plane, crop_distribution);
+            const double scale = 1 / crop_distribution.stddev();
+            for (float& v : plane) v = float(v * scale);
+        } else {
+            // A Gaussian channel: the whole channel's mean and σ.
+            const EmpiricalDistribution whole(channels[c]);
+            const double scale = whole.stddev() / crop_distribution.stddev();
+            for (float& v : plane) v = float(whole.mean() + (v - crop_distribution.mean()) * scale);
+        }
     }
     TilingParameters parameters;
     parameters.output = TilingOutput::colour;

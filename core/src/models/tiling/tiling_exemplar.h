@@ -1,4 +1,4 @@
-// How a tiling texture's exemplar is made from image planes: a centred crop whose sides are
+// How a tiling texture's exemplar is made from image planes: a representative crop whose sides are
 // powers of two (the moment pyramids need them), made periodic by Moisan's decomposition (tiles
 // are cut anywhere in it, with wrap: a seam would show inside tiles, notes P2.7 #6), quantised.
 #pragma once
@@ -14,15 +14,31 @@ namespace stochtex {
 /// The largest power of two ≤ n (n ≥ 1).
 int power_of_two_floor(int n);
 
-/// The centred crop_width × crop_height part of a plane, made periodic (Moisan's periodic
-/// component, which keeps the crop's mean).
-std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height);
+/// Where a crop starts in its photo (pixels); x < 0: centred.
+struct CropOrigin {
+    int x = -1, y = -1;
+};
+
+/// The crop_width × crop_height crop of the decorrelated channels that best stands for the whole
+/// photo: of positions evenly spaced over it (the centred one included, and kept on ties), the
+/// one whose channels' value distributions (W1 in σ, the worst channel) and main channel's radial
+/// spectrum (log-PSD dB) are closest to the whole photo's, each in units of its fidelity target
+/// (stochtex/metrics.h, FidelityTargets). A photo whose centre is lighter or smoother than the
+/// rest no longer gives a texture that is.
+CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                      int crop_width, int crop_height);
+
+/// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
+/// (Moisan's periodic component, which keeps the crop's mean).
+std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
+                                 CropOrigin origin = {});
 
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
-/// photo, Gaussianised where the channel has a histogram map: the exemplar is their centred
-/// crop of at most max_side² pixels, periodic, at `bits` bits. A channel with a map is stored
-/// in standard-normal units (the map's input: divided by the whole channel's σ), the others in
-/// channel units, so the texture passes stored values to ColourMapping unscaled.
+/// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
+/// representative crop (representative_crop_origin) of at most max_side² pixels, periodic, at `bits` bits. A channel with a map is stored
+/// in standard-normal units by the crop's own ranks (the map's input), the others in channel
+/// units with the whole channel's mean and σ, so the texture's histograms are the photo's and
+/// the texture passes stored values to ColourMapping unscaled.
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits);
 

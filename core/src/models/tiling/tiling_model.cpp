@@ -21,6 +21,8 @@ ModelInfo tiling_info()
     info.doc = "docs/models/tiling.md";
     info.capabilities.analysis = true;
     info.capabilities.osl = true;  // colour and normal_map outputs; colour_map has no transcription
+    // Gravel: PCA colour 6.2 % false colour, rgb 0.3 % (docs/models/tiling.md).
+    info.automatic_colour_modes = {"pca", "rgb"};
     return info;
 }
 
@@ -30,7 +32,7 @@ public:
     {
         declare_analysis_options(
             {integer_option("exemplar-size", 16, 1024,
-                            {"256", "px", "largest exemplar side; the exemplar is the photo's centred crop, sides powers of two"}),
+                            {"256", "px", "largest exemplar side; the exemplar is the photo's most representative crop, sides powers of two"}),
              choice_option("exemplar-bits", {"8", "16"}, {"8", "bits", "bits per stored exemplar sample"})});
     }
 

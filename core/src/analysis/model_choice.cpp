@@ -1,0 +1,178 @@
+#include "analysis/model_choice.h"
+
+#include <stochtex/error.h>
+#include <stochtex/metrics.h>
+#include <stochtex/render.h>
+#include <stochtex/stex_file.h>
+#include <stochtex/texture.h>
+
+#include "models/model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <mutex>
+#include <set>
+
+#include <tbb/parallel_for.h>
+
+namespace stochtex {
+
+namespace {
+
+/// The render each candidate is scored on is at most this many pixels a side (the photo's own
+/// pixel scale, from the texture's origin): large enough that the metrics see an octave below
+/// the features a 512² photo holds, small enough that the slowest model renders it in a
+/// fraction of a second. The photo itself is measured whole.
+constexpr int max_scoring_side = 384;
+
+struct Candidate {
+    const Model* model = nullptr;
+    ColourMode colour_mode = ColourMode::pca;
+    TextureDescription description;
+    ModelScore score;
+};
+
+ModelScore score_of(const Model& model, const TextureDescription& description, const Image& photo)
+{
+    RenderSettings settings;
+    settings.width = std::min(photo.width, max_scoring_side);
+    settings.height = std::min(photo.height, max_scoring_side);
+    settings.units_per_pixel = 1.0 / description.pixels_per_unit;
+    settings.threads = 1;  // the candidates run side by side
+    const Image synthesis = render(*make_texture(description), settings);
+    const ComparisonReport report = compare_images(photo, synthesis);
+    ModelScore score;
+    score.model = model.name();
+    score.colour = to_string(description.colour_mode);
+    score.penalty = fidelity_penalty(report);
+    score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
+    score.polar_log_psd_db = report.polar_log_psd_db;
+    score.w1_sigma = std::max({report.w1_relative[0], report.w1_relative[1], report.w1_relative[2]});
+    score.false_colour_rate = report.false_colour_rate;
+    score.gradient_orientation_degrees = report.gradient_orientation_degrees;
+    score.gradient_magnitude_w1 = report.gradient_magnitude_w1;
+    score.bytes = static_cast<long long>(format_stex(description).size());
+    return score;
+}
+
+/// The options a candidate is fitted with: the shared ones, and of the model options given only
+/// those it declares (`--impulses 8` is gabor's and lrp's, not wavelet's).
+AnalysisOptions options_for(const Model& model, ColourMode colour_mode, const AnalysisOptions& options)
+{
+    AnalysisOptions own = options;
+    own.model = model.name();
+    own.colour_mode = colour_mode;
+    own.model_options.clear();
+    for (const auto& option : options.model_options)
+        for (const AnalysisOption& declared : model.analysis_options())
+            if (declared.info.key == option.first) own.model_options.push_back(option);
+    return own;
+}
+
+}  // namespace
+
+TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
+                                          const ProgressCallback& progress)
+{
+    // The candidates: each analysable model, with each colour mode it declares worth trying
+    // when the caller left the choice open.
+    std::vector<Candidate> candidates;
+    std::set<std::string> declared_somewhere;
+    for (const Model* model : registered_models()) {
+        if (!model->info().capabilities.analysis) continue;
+        std::vector<ColourMode> modes{options.colour_mode};
+        if (options.try_colour_modes) {
+            modes.clear();
+            for (const std::string& name : model->info().automatic_colour_modes) modes.push_back(colour_mode_from_string(name));
+        }
+        for (ColourMode mode : modes) {
+            Candidate& candidate = candidates.emplace_back();
+            candidate.model = model;
+            candidate.colour_mode = mode;
+        }
+        for (const AnalysisOption& option : model->analysis_options()) declared_somewhere.insert(option.info.key);
+    }
+    for (const auto& option : options.model_options)
+        if (!declared_somewhere.count(option.first))
+            throw Error("auto: unknown analysis option --" + option.first + " (no model declares it)");
+
+    if (candidates.empty()) throw Error("auto: no registered model can analyse photos");
+
+    // The candidates side by side, one a worker: the fits are single-threaded, so this is what
+    // fills the cores (each render then runs on its worker's thread; the result does not
+    // depend on threads). A failure names the model it came from.
+    std::mutex progress_mutex;
+    std::size_t finished = 0;
+    if (progress) progress(0.0, "fitting every model");
+    tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
+        Candidate& candidate = candidates[i];
+        const Model& model = *candidate.model;
+        const std::string label = model.name() + " (" + to_string(candidate.colour_mode) + ")";
+        try {
+            candidate.description = analyze(photo, options_for(model, candidate.colour_mode, options));
+            candidate.score = score_of(model, candidate.description, photo);
+        } catch (const Error& e) {
+            throw Error("auto: " + label + ": " + e.what());
+        }
+        if (!progress) return;
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        const std::string stage = label + " scored";
+        progress(double(++finished) / double(candidates.size() + 1), stage.c_str());
+    });
+
+    // Fidelity first; among the candidates within model_choice_tolerance of the best penalty
+    // (differences the metrics' own noise makes), the smallest file, then registry order.
+    double best_penalty = std::numeric_limits<double>::infinity();
+    for (const Candidate& c : candidates) best_penalty = std::min(best_penalty, c.score.penalty);
+    const Candidate* chosen = nullptr;
+    for (const Candidate& c : candidates) {
+        if (c.score.penalty > best_penalty * (1 + model_choice_tolerance)) continue;
+        if (!chosen || c.score.bytes < chosen->score.bytes) chosen = &c;
+    }
+
+    TextureDescription result = chosen->description;
+    for (const Candidate& c : candidates) result.provenance.model_choice.push_back(c.score);
+    for (auto& [name, value] : result.provenance.options)
+        if (name == "model") value = automatic_model;  // what was asked; description.model says what was chosen
+    if (progress) progress(1.0, "done");
+    return result;
+}
+
+std::string format_model_choice(const TextureDescription& description)
+{
+    const std::vector<ModelScore>& scores = description.provenance.model_choice;
+    if (scores.empty()) return {};
+    const auto value = [](double v, const char* format) {
+        char buffer[32];
+        if (std::isnan(v)) return std::string("n/a");
+        std::snprintf(buffer, sizeof buffer, format, v);
+        return std::string(buffer);
+    };
+    char line[256];
+    std::string text;
+    std::snprintf(line, sizeof line, "%-8s %-6s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
+                  "radial dB", "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
+    text += line;
+    for (const ModelScore& s : scores) {
+        const bool chosen = s.model == description.model && s.colour == to_string(description.colour_mode);
+        std::snprintf(line, sizeof line, "%-8s %-6s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
+                      s.colour.c_str(), s.penalty,
+                      value(s.radial_log_psd_db, "%.2f").c_str(), value(s.polar_log_psd_db, "%.2f").c_str(),
+                      value(s.w1_sigma, "%.3f").c_str(),
+                      (value(100 * s.false_colour_rate, "%.2f") + " %").c_str(),
+                      value(s.gradient_orientation_degrees, "%.2f").c_str(),
+                      value(s.gradient_magnitude_w1, "%.3f").c_str(), s.bytes,
+                      chosen ? "  ← chosen" : "");
+        text += line;
+    }
+    std::snprintf(line, sizeof line,
+                  "rule: lowest penalty (mean of metric/target: radial 1.5 dB, 2D 1.5 dB, W1 0.1 σ, false colour 1 %%, "
+                  "orientation 5°, |∇| 0.1); within %.0f %% of it, the smallest file\n",
+                  100 * model_choice_tolerance);
+    text += line;
+    return text;
+}
+
+}  // namespace stochtex

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# What `stex analyze --model auto` chooses for each shared photo (../shared/exemplars, not the
+# height map), with its score table, and a contact sheet: per photo a row of 128² crops —
+# photo | wavelet | gabor | tiling | lrp (each model's own fit, in pca colour but the chosen one
+# in its chosen colour mode, rendered at the photo's pixel scale), the chosen one framed in white. Prints Markdown (docs/models/README.md's table).
+#   usage: scripts/model-choice-table.sh [BUILD_DIR] [SHEET.jpg]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$root/build}"
+sheet="${2:-}"
+stex="$build/cli/stex"
+exemplars="$root/../shared/exemplars"
+[ -d "$exemplars" ] || { echo "no $exemplars" >&2; exit 1; }
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+models=(wavelet gabor tiling lrp)
+rows=()
+echo "| photo | chosen | penalty of each candidate | chosen: radial dB, 2D dB, W1/σ, false colour, orientation °, \|∇\| W1 | bytes | analyse s |"
+echo "|---|---|---|---|---|---|"
+for photo in "$exemplars"/*.png; do
+    name="$(basename "$photo" .png)"
+    [ "$name" = rock_height ] && continue  # a height map, not a photo
+    t0=$(date +%s.%N)
+    "$stex" analyze "$photo" -o "$work/$name-auto.stex" >"$work/$name-auto.log"
+    t1=$(date +%s.%N)
+    python3 - "$work/$name-auto.stex" "$name" "$(echo "$t1 - $t0" | bc)" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+label = lambda model, colour: model if colour == "pca" else model + "/" + colour
+scores = {label(s["model"], s["colour"]): s for s in d["provenance"]["model_choice"]}
+chosen = label(d["model"], d["colour"]["mode"])
+c = scores[chosen]
+f = lambda v, p: "n/a" if v is None else ("%." + str(p) + "f") % v
+print("| %s | **%s** | %s | %s, %s, %s, %s %%, %s, %s | %d | %.1f |" % (
+    sys.argv[2], chosen, ", ".join("%s %s" % (m, f(s["penalty"], 2)) for m, s in scores.items()),
+    f(c["radial_log_psd_db"], 2), f(c["polar_log_psd_db"], 2), f(c["w1_sigma"], 3),
+    f(None if c["false_colour_rate"] is None else 100 * c["false_colour_rate"], 2),
+    f(c["gradient_orientation_degrees"], 2), f(c["gradient_magnitude_w1"], 3), c["bytes"], float(sys.argv[3])))
+PY
+    [ -n "$sheet" ] || continue
+    chosen="$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["model"])' "$work/$name-auto.stex")"
+    chosen_colour="$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["colour"]["mode"])' "$work/$name-auto.stex")"
+    # The photo's top-left 128² and each model's render of the same size, sRGB.
+    oiiotool "$photo" --cut 128x128+0+0 -o "$work/$name-0.png"
+    row=("$work/$name-0.png")
+    for model in "${models[@]}"; do
+        colour=pca
+        [ "$model" = "$chosen" ] && colour="$chosen_colour"  # the chosen candidate as it was chosen
+        "$stex" analyze "$photo" -o "$work/$name-$model.stex" --model "$model" --colour "$colour" >/dev/null
+        "$stex" render "$work/$name-$model.stex" -o "$work/$name-$model.png" --size 128x128 >/dev/null
+        if [ "$model" = "$chosen" ]; then
+            oiiotool "$work/$name-$model.png" --cut 124x124+2+2 --fit:pad=1 128x128 --ch R,G,B \
+                --box:color=1,1,1:fill=0 0,0,127,127 -o "$work/$name-$model.png"
+        fi
+        row+=("$work/$name-$model.png")
+    done
+    rows+=("${row[@]}")
+done
+if [ -n "$sheet" ]; then
+    oiiotool "${rows[@]}" --mosaic:pad=4 5x$(( ${#rows[@]} / 5 )) --ch R,G,B -o "$sheet"
+    echo
+    echo "contact sheet: $sheet"
+fi
