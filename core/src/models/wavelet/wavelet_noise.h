@@ -113,7 +113,14 @@ public:
     static const WaveletNoise3D& shared();
     WaveletNoise3D(int tile_size, std::uint64_t tile_seed);
 
+    /// N(x, y, z), lattice units: the 3 × 3 × 3 coefficients combined in z and y first, then in x
+    /// (the order a solid raster shares along a row: eval_row()).
     float eval(double x, double y, double z) const;
+    /// A row of a solid raster at lattice (y, z): C[x] for the size() lattice columns x, then
+    /// C[0], C[1] again (size() + 2 floats), the coefficients combined in z and y with eval()'s
+    /// weights and order, so that N(x, y, z) = wx0·C[i] + wx1·C[i+1] + wx2·C[i+2] with
+    /// i = wx.first & (size − 1): bit-identical to eval().
+    void eval_row(double y, double z, float* columns) const;
     int tile_size() const { return size_; }
     double variance() const { return variance_; }
     /// The B-spline coefficients, tile_size³ floats, index (z · size + y) · size + x (exporters).
