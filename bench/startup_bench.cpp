@@ -7,7 +7,8 @@
 //                                       dynamic loader and static initialisation: the floor)
 //   Ref/True                            `/bin/true`: fork + exec of a minimal process
 //
-// Each iteration is one fork/exec/wait of the command, timed on the wall clock; report medians
+// Each iteration is one fork/exec/wait of the command, timed on the wall clock (ms) and by the
+// child's CPU time (cpu_ms, user + system: robust on a shared machine); report medians
 // (bench/run.sh: STOCHTEX_BENCH=startup_bench bench/run.sh). The textures are analysed from
 // data/exemplars/concrete_512.png once, before any timing, one per model (default options). The
 // table ends with each model's median minus the Ref/Version floor: the time the texture itself
@@ -19,9 +20,11 @@
 
 #include "median_reporter.h"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -34,8 +37,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Runs argv[0] with its arguments, stdout and stderr to /dev/null; returns its exit status.
-int run(const std::vector<std::string>& args)
+/// Runs argv[0] with its arguments, stdout and stderr to /dev/null; returns its exit status and
+/// adds the child's CPU time (user + system, seconds) to *cpu.
+int run(const std::vector<std::string>& args, double* cpu = nullptr)
 {
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -48,32 +52,40 @@ int run(const std::vector<std::string>& args)
         _exit(127);
     }
     int status = 0;
-    if (pid < 0 || waitpid(pid, &status, 0) != pid) return -1;
+    struct rusage usage {};
+    if (pid < 0 || wait4(pid, &status, 0, &usage) != pid) return -1;
+    if (cpu)
+        *cpu += double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 void bm_command(benchmark::State& state, std::vector<std::string> args, std::string label)
 {
+    double cpu = 0;
     for (auto _ : state) {
-        if (run(args) != 0) {
+        if (run(args, &cpu) != 0) {
             state.SkipWithError(("command failed: " + args[0]).c_str());
             break;
         }
     }
-    state.counters["ms"] = benchmark::Counter(double(state.iterations()) * 1e3,
+    state.counters["ms"] = benchmark::Counter(double(state.iterations()) * 1e-3,
                                               benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    // The child's own CPU time per run: what the command costs, however loaded the machine is.
+    state.counters["cpu_ms"] = benchmark::Counter(1e3 * cpu / double(std::max<benchmark::IterationCount>(1, state.iterations())));
     state.SetLabel(label);
 }
 
 class StartupReporter : public stochtex::bench::MedianReporter {
 public:
-    explicit StartupReporter(OutputOptions options) : MedianReporter({"ms"}, options) {}
+    explicit StartupReporter(OutputOptions options) : MedianReporter({"cpu_ms"}, options) {}
 
     void Finalize() override
     {
         ConsoleReporter::Finalize();
         const Entry* floor = find("Ref/Version");
-        std::printf("\nStart-up (median ms of this run; above the floor = what the texture costs):\n");
+        std::printf("\nStart-up (median CPU ms of the child process, user + system; above the floor = what the\n"
+                    "texture costs; the ms column above is wall time, which a loaded machine inflates):\n");
         for (const auto& [name, entry] : medians()) {
             std::printf("  %-40s %8.1f ms", name.c_str(), entry.rate);
             if (floor && name.rfind("Ref/", 0) != 0) std::printf("   %+8.1f ms above stex --version", entry.rate - floor->rate);

@@ -16,6 +16,7 @@
 #include <stochtex/models/wavelet_parameters.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstdio>
@@ -256,15 +257,17 @@ TEST(WaveletTexture, RenderIsIdenticalForAnyThreadCount)
     }
 }
 
-TEST(WaveletTexture, VectorisedRasterPathsEqualThePointMethodsBitForBit)
+namespace {
+
+/// Raster and solid-slice values against eval() / eval_solid(), bit for bit.
+void check_vectorised_paths_against_point_methods()
 {
-    // The SIMD raster (Highway, the CPU's best instruction set) performs eval()'s operations in
-    // eval()'s order: every value must be equal, not close. Widths that are not a multiple of any
-    // vector length (vector loop and scalar tail), footprints that keep every band, fade some
-    // and drop most (the Gauss–Hermite histogram filter), planar and interleaved output, the
-    // periodic form and solid slices; histograms on (the monotone-cubic batch) and off.
-    for (HistogramMode histogram : {HistogramMode::on, HistogramMode::off}) {
-        const TextureDescription d = analyse_committed_exemplar(histogram);
+    // Analysis gives uniform histogram knots (the cubic's segment by one multiplication); a
+    // .stex stores them in float decimals, not uniform to 1e-9 (the segment by search): both.
+    const TextureDescription analysed = analyse_committed_exemplar(HistogramMode::on);
+    const TextureDescription descriptions[] = {analysed, parse_stex(format_stex(analysed), "t.stex"),
+                                               analyse_committed_exemplar(HistogramMode::off)};
+    for (const TextureDescription& d : descriptions) {
         const double pixel = 1.0 / d.pixels_per_unit;
         const auto plain = make_texture(d);
         const auto periodic = make_periodic_texture(d, {0.75, 0.5});
@@ -307,6 +310,24 @@ TEST(WaveletTexture, VectorisedRasterPathsEqualThePointMethodsBitForBit)
                 }
         }
     }
+}
+
+}  // namespace
+
+TEST(WaveletTexture, VectorisedRasterPathsEqualThePointMethodsBitForBit)
+{
+    // The SIMD raster (Highway, the CPU's best instruction set) performs eval()'s operations in
+    // eval()'s order: every value must be equal, not close. Widths that are not a multiple of any
+    // vector length (vector loop and scalar tail), footprints that keep every band, fade some
+    // and drop most (the Gauss–Hermite histogram filter), planar and interleaved output, the
+    // periodic form and solid slices; histograms on (the monotone-cubic batch) and off; on every
+    // instruction set Highway compiled the kernels for that this CPU has.
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        check_vectorised_paths_against_point_methods();
+    }
+    hwy::SetSupportedTargetsForTest(0);
 }
 
 TEST(WaveletTexture, MinificationConvergesToTheMean)

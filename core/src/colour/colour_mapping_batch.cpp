@@ -17,11 +17,12 @@
 #ifndef STOCHTEX_COLOUR_MAPPING_BATCH_ONCE
 #define STOCHTEX_COLOUR_MAPPING_BATCH_ONCE
 namespace stochtex::colour_batch {
-/// A monotone cubic with uniform knots, as flat arrays (MonotoneCubic's evaluation form).
-struct UniformCubic {
+/// A monotone cubic as flat arrays (MonotoneCubic's evaluation form).
+struct CubicTable {
     const double *x, *y, *inverse_width, *c1, *c2, *c3;
     std::size_t knots;
     double inverse_step;
+    bool uniform;  // false: the segment is found by counting knots (the scalar binary search)
 };
 }  // namespace stochtex::colour_batch
 #endif
@@ -64,10 +65,10 @@ private:
     hn::Vec<D> table_[max_vectors];
 };
 
-/// out[i] = f(t[i]): MonotoneCubic::operator() on the uniform path, lane-wise. Lanes outside
+/// out[i] = f(t[i]): MonotoneCubic::operator(), lane-wise. Lanes outside
 /// (x₀, x_n) take an end value; their segment is clamped too, so every read stays inside.
 template <class Read>
-void EvalCubicWith(const UniformCubic& f, const double* t, double* out, std::size_t count, const Read& read)
+void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_t count, const Read& read)
 {
     const hn::ScalableTag<double> d;
     const hn::RebindToSigned<decltype(d)> di;
@@ -81,15 +82,25 @@ void EvalCubicWith(const UniformCubic& f, const double* t, double* out, std::siz
     std::size_t i = 0;
     for (; i + lanes <= count; i += lanes) {
         const auto v = hn::LoadU(d, t + i);
-        // size_t((t − x₀)·inverse_step), at most the last segment (min and truncation commute).
-        const auto position = hn::Min(hn::Max(hn::Mul(hn::Sub(v, x_front), inverse_step), zero), top);
-        const auto segment = hn::ConvertTo(di, position);
-        const auto x_at = read(0, segment);
-        const auto x_next = read(0, hn::Add(segment, one));
-        // Rounding at a knot may pick the neighbouring segment: step back into the right one.
-        const auto back = hn::RebindMask(di, hn::Lt(v, x_at));
-        const auto forward = hn::AndNot(back, hn::And(hn::RebindMask(di, hn::Ge(v, x_next)), hn::Lt(segment, segment_limit)));
-        auto k = hn::IfThenElse(back, hn::Sub(segment, one), hn::IfThenElse(forward, hn::Add(segment, one), segment));
+        hn::Vec<decltype(di)> k;
+        if (f.uniform) {
+            // size_t((t − x₀)·inverse_step), at most the last segment (min and truncation commute).
+            const auto position = hn::Min(hn::Max(hn::Mul(hn::Sub(v, x_front), inverse_step), zero), top);
+            const auto segment = hn::ConvertTo(di, position);
+            const auto x_at = read(0, segment);
+            const auto x_next = read(0, hn::Add(segment, one));
+            // Rounding at a knot may pick the neighbouring segment: step back into the right one.
+            const auto back = hn::RebindMask(di, hn::Lt(v, x_at));
+            const auto forward =
+                hn::AndNot(back, hn::And(hn::RebindMask(di, hn::Ge(v, x_next)), hn::Lt(segment, segment_limit)));
+            k = hn::IfThenElse(back, hn::Sub(segment, one), hn::IfThenElse(forward, hn::Add(segment, one), segment));
+        } else {
+            // upper_bound(x, t) − 1: the number of knots ≤ t, less one (exact: no adjustment).
+            k = hn::Set(di, -1);
+            for (std::size_t knot = 0; knot < f.knots; ++knot)
+                k = hn::Sub(k, hn::VecFromMask(di, hn::RebindMask(di, hn::Le(hn::Set(d, f.x[knot]), v))));
+            k = hn::Min(k, segment_limit);
+        }
         k = hn::Max(k, hn::Zero(di));
         const auto s = hn::Mul(hn::Sub(v, read(0, k)), read(1, k));
         const auto inner = hn::Add(read(4, k), hn::Mul(s, read(5, k)));
@@ -109,7 +120,9 @@ void EvalCubicWith(const UniformCubic& f, const double* t, double* out, std::siz
             out[i] = f.y[f.knots - 1];
             continue;
         }
-        std::size_t k = std::min(std::size_t((v - f.x[0]) * f.inverse_step), f.knots - 2);
+        std::size_t k = f.uniform ? std::size_t((v - f.x[0]) * f.inverse_step)
+                                  : std::size_t(std::upper_bound(f.x, f.x + f.knots, v) - f.x) - 1;
+        if (k > f.knots - 2) k = f.knots - 2;
         if (v < f.x[k]) --k;
         else if (v >= f.x[k + 1] && k + 2 < f.knots) ++k;
         const double s = (v - f.x[k]) * f.inverse_width[k];
@@ -117,7 +130,7 @@ void EvalCubicWith(const UniformCubic& f, const double* t, double* out, std::siz
     }
 }
 
-void EvalCubic(const UniformCubic& f, const double* t, double* out, std::size_t count)
+void EvalCubic(const CubicTable& f, const double* t, double* out, std::size_t count)
 {
     // Arrays by number: x, inverse_width, y, c1, c2, c3.
     const hn::ScalableTag<double> d;
@@ -229,12 +242,8 @@ HWY_EXPORT(ToRgb);
 
 void MonotoneCubic::eval(const double* t, double* out, std::size_t count) const
 {
-    if (!uniform_) {
-        for (std::size_t i = 0; i < count; ++i) out[i] = (*this)(t[i]);
-        return;
-    }
-    const colour_batch::UniformCubic f{x_.data(),  y_.data(),  inverse_width_.data(), c1_.data(),
-                                       c2_.data(), c3_.data(), x_.size(),             inverse_step_};
+    const colour_batch::CubicTable f{x_.data(), y_.data(), inverse_width_.data(), c1_.data(), c2_.data(),
+                                       c3_.data(), x_.size(), inverse_step_, uniform_};
     HWY_DYNAMIC_DISPATCH(colour_batch::EvalCubic)(f, t, out, count);
 }
 
