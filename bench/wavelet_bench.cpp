@@ -366,19 +366,11 @@ public:
 
 };
 
-bool console_format(int argc, char** argv)
-{
-    for (int i = 1; i < argc; ++i)
-        if (std::strncmp(argv[i], "--benchmark_format=", 19) == 0) return std::strcmp(argv[i] + 19, "console") == 0;
-    const char* env = std::getenv("BENCHMARK_FORMAT");
-    return !env || std::strcmp(env, "console") == 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    const bool console = console_format(argc, argv);
+    const bool console = stochtex::bench::console_format(argc, argv);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 

@@ -143,18 +143,25 @@ Rgb WaveletTexture::finish(const std::array<double, 3>& kept, double gain, const
     return colour_.to_rgb(z, fades.dropped_sigma);
 }
 
+template <class BandSum>
+void WaveletTexture::for_each_kept_band(const Fades& fades, const BandSum& band_sum) const
+{
+    // synthesize()'s loop: channel by channel, band by band, the bands the fades keep.
+    for (int c = 0; c < 3; ++c) {
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const float fade = fades.band[j];
+            if (fade > 0 && bands[j].weight != 0) band_sum(c, bands[j], fade * bands[j].weight);
+        }
+    }
+}
+
 template <class BandNoise>
 Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
 {
     const Fades f = fades(footprint_px);
     std::array<double, 3> kept{};
-    for (int c = 0; c < 3; ++c) {
-        const auto& bands = bands_[c];
-        for (std::size_t j = 0; j < bands.size(); ++j) {
-            const float fade = f.band[j];
-            if (fade > 0 && bands[j].weight != 0) kept[c] += fade * bands[j].weight * band_noise(bands[j]);
-        }
-    }
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) { kept[c] += fade_weight * band_noise(band); });
     return finish(kept, gain, f);
 }
 
@@ -221,34 +228,27 @@ void WaveletTexture::eval_region(const RasterRegion& region, const RgbOutput& rg
     const Fades f = fades(region.footprint.major_axis() * description().pixels_per_unit);
     const std::size_t width = std::size_t(region.width), pixels = width * std::size_t(region.height);
     RasterScratch& scratch = raster_scratch(pixels, width, 0);
-    for (int c = 0; c < 3; ++c) {
-        const auto& bands = bands_[c];
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) {
         double* kept = &scratch.kept[std::size_t(c) * pixels];
-        for (std::size_t j = 0; j < bands.size(); ++j) {
-            const Band& band = bands[j];
-            const float fade = f.band[j];
-            if (!(fade > 0 && band.weight != 0)) continue;
-            const double fade_weight = fade * band.weight;
-            const WaveletNoise2D& tile = *band.tile;
-            // tile.spline_x() of every column, vectorised; then the padded columns it reads.
-            scratch.column_splines({region.origin_u, region.du, region.x0, band.scale[0], band.offset[0],
-                                    tile.period_x(), 1.0 / tile.period_x()},
-                                   width);
-            const auto [lo_at, hi_at] = std::minmax_element(scratch.index.begin(), scratch.index.begin() + std::ptrdiff_t(width));
-            const std::int32_t lo = *lo_at, hi = *hi_at + 2;
-            for (std::size_t i = 0; i < width; ++i) scratch.index[i] -= lo;
-            scratch.plan(width);
-            const std::size_t span = std::size_t(hi - lo + 1);
-            scratch.reserve_combined(span);
-            for (int y = 0; y < region.height; ++y) {
-                const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
-                wavelet_raster::combine_rows(row.w, tile.padded_row(row.first) + lo, tile.padded_width(), span,
-                                             scratch.combined.data());
-                wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), band.gain, fade_weight,
-                                                kept + std::size_t(y) * width, width);
-            }
+        const WaveletNoise2D& tile = *band.tile;
+        // tile.spline_x() of every column, vectorised; then the padded columns it reads.
+        scratch.column_splines({region.origin_u, region.du, region.x0, band.scale[0], band.offset[0],
+                                tile.period_x(), 1.0 / tile.period_x()},
+                               width);
+        const auto [lo_at, hi_at] = std::minmax_element(scratch.index.begin(), scratch.index.begin() + std::ptrdiff_t(width));
+        const std::int32_t lo = *lo_at, hi = *hi_at + 2;
+        for (std::size_t i = 0; i < width; ++i) scratch.index[i] -= lo;
+        scratch.plan(width);
+        const std::size_t span = std::size_t(hi - lo + 1);
+        scratch.reserve_combined(span);
+        for (int y = 0; y < region.height; ++y) {
+            const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
+            wavelet_raster::combine_rows(row.w, tile.padded_row(row.first) + lo, tile.padded_width(), span,
+                                         scratch.combined.data());
+            wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), band.gain, fade_weight,
+                                            kept + std::size_t(y) * width, width);
         }
-    }
+    });
     colour_.to_rgb({&scratch.kept[0], &scratch.kept[pixels], &scratch.kept[2 * pixels]}, 1.0, f.dropped_sigma, rgb, 0,
                    pixels);
 }
@@ -264,29 +264,22 @@ void WaveletTexture::eval_solid_region(const SolidRegion& region, const RgbOutpu
     const WaveletNoise3D& noise = WaveletNoise3D::shared();
     const std::size_t width = std::size_t(plane.width), pixels = width * std::size_t(plane.height);
     RasterScratch& scratch = raster_scratch(pixels, width, std::size_t(noise.tile_size()) + 2);
-    for (int c = 0; c < 3; ++c) {
-        const auto& bands = bands_[c];
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) {
         double* kept = &scratch.kept[std::size_t(c) * pixels];
-        for (std::size_t j = 0; j < bands.size(); ++j) {
-            const Band& band = bands[j];
-            const float fade = f.band[j];
-            if (!(fade > 0 && band.weight != 0)) continue;
-            const double fade_weight = fade * band.weight;
-            const double s = band.solid_scale;
-            // QuadraticBSplineWeights of every column, the first index wrapped into the tile.
-            scratch.column_splines({plane.origin_u, plane.du, plane.x0, s, band.offset[0], noise.tile_size(),
-                                    1.0 / noise.tile_size()},
-                                   width);
-            scratch.plan(width);
-            const double z = region.w * s + band.offset[2];
-            for (int y = 0; y < plane.height; ++y) {
-                noise.eval_row(plane.v(y) * s + band.offset[1], z, scratch.combined.data());
-                // gain 1: the solid band's value enters the sum as it is (eval_solid()).
-                wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), 1.0, fade_weight,
-                                                kept + std::size_t(y) * width, width);
-            }
+        const double s = band.solid_scale;
+        // QuadraticBSplineWeights of every column, the first index wrapped into the tile.
+        scratch.column_splines({plane.origin_u, plane.du, plane.x0, s, band.offset[0], noise.tile_size(),
+                                1.0 / noise.tile_size()},
+                               width);
+        scratch.plan(width);
+        const double z = region.w * s + band.offset[2];
+        for (int y = 0; y < plane.height; ++y) {
+            noise.eval_row(plane.v(y) * s + band.offset[1], z, scratch.combined.data());
+            // gain 1: the solid band's value enters the sum as it is (eval_solid()).
+            wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), 1.0, fade_weight,
+                                            kept + std::size_t(y) * width, width);
         }
-    }
+    });
     colour_.to_rgb({&scratch.kept[0], &scratch.kept[pixels], &scratch.kept[2 * pixels]}, solid_gain(), f.dropped_sigma,
                    rgb, 0, pixels);
 }

@@ -68,6 +68,10 @@ private:
     /// `columns` column splines and `span` combined lattice columns.
     struct RasterScratch;
     static RasterScratch& raster_scratch(std::size_t pixels, std::size_t columns, std::size_t span);
+    /// band_sum(c, band, fade · weight) for every band of every channel the fades keep, in
+    /// synthesize()'s order (the raster paths).
+    template <class BandSum>
+    void for_each_kept_band(const Fades& fades, const BandSum& band_sum) const;
     template <class BandNoise>
     Rgb synthesize(double footprint_px, double gain, const BandNoise& band_noise) const;
 
