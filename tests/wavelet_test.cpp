@@ -292,9 +292,11 @@ void check_vectorised_paths_against_point_methods()
                         }
                     }
             }
-        for (double footprint_px : {1.0, 3.3, 29.0}) {
+        // At 5e9 texture units the lattice indices pass 2^31 (positions may reach 2^45 exemplar pixels).
+        const std::pair<double, double> slices[] = {{0.37, 1.0}, {0.37, 3.3}, {0.37, 29.0}, {5e9, 1.0}, {5e9, 3.3}};
+        for (const auto& [origin, footprint_px] : slices) {
             SolidRegion slice;
-            slice.plane.origin_u = 0.37, slice.plane.origin_v = -1.9;
+            slice.plane.origin_u = origin, slice.plane.origin_v = -1.9;
             slice.plane.du = 0.9 * pixel, slice.plane.dv = 1.2 * pixel;
             slice.plane.x0 = -4, slice.plane.y0 = 11, slice.plane.width = 61, slice.plane.height = 4;
             slice.plane.footprint = Footprint2D::square(footprint_px * pixel);

@@ -234,7 +234,7 @@ float WaveletNoise3D::eval(double x, double y, double z) const
     const QuadraticBSplineWeights wx(x), wy(y), wz(z);
     float column[3];
     for (int i = 0; i < 3; ++i) {
-        const int cx = (wx.first + i) & mask_;
+        const std::size_t cx = std::size_t((wx.first + i) & mask_);
         float plane[3];
         for (int k = 0; k < 3; ++k) {
             const std::size_t slab = std::size_t((wz.first + k) & mask_) * size_;

@@ -136,14 +136,14 @@ private:
 /// Quadratic B-spline weights for the three coefficients around x, and the index of the first.
 /// (Cook–DeRose evaluate at "mid = ceil(x - 1/2)"; this is the same spline, written for floor.)
 struct QuadraticBSplineWeights {
-    int first;     ///< index of the leftmost of the three coefficients
+    std::int64_t first;  ///< index of the leftmost of the three coefficients (positions reach 2^45 cells)
     float w[3];
     explicit QuadraticBSplineWeights(double x)
     {
         const double shifted = x - 0.5;
         const double base = std::floor(shifted);
         const float t = float(shifted - base);  // in [0, 1)
-        first = int(base);
+        first = std::int64_t(base);
         w[0] = 0.5f * (1 - t) * (1 - t);
         w[2] = 0.5f * t * t;
         w[1] = 1 - w[0] - w[2];
