@@ -6,6 +6,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
+#include <cstring>
 #include <initializer_list>
 #include <map>
 #include <string>
@@ -55,5 +57,15 @@ private:
     std::initializer_list<const char*> units_;
     std::map<std::string, Entry> medians_;
 };
+
+/// Whether the run prints Google Benchmark's console format (then a MedianReporter reports it):
+/// no --benchmark_format=… other than console, nor a BENCHMARK_FORMAT environment variable.
+inline bool console_format(int argc, char** argv)
+{
+    for (int i = 1; i < argc; ++i)
+        if (std::strncmp(argv[i], "--benchmark_format=", 19) == 0) return std::strcmp(argv[i] + 19, "console") == 0;
+    const char* env = std::getenv("BENCHMARK_FORMAT");
+    return !env || std::strcmp(env, "console") == 0;
+}
 
 }  // namespace stochtex::bench

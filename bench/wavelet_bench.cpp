@@ -3,6 +3,11 @@
 //   Analyze/...      analysis of a 512² RGB photo (top-left crop of exemplars/dirt.png); goal ≤ 30 ms
 //   Render2D/...     512×512 filtered renders through stochtex::render(), 1 and 2 threads
 //   Render3D/...     the same raster as a solid (3D) texture slice
+//   Raster2D/...     the same 512² raster evaluated on the calling thread, in 8-row bands like
+//   Raster3D/...     render(): path:simd is the model's raster method (Texture::eval_region /
+//                    eval_solid_region, vectorised), path:point the scalar reference in the same
+//                    run (Texture's default loop over eval() / eval_solid(), one pixel at a time);
+//                    rates from CPU time, so they hold on a loaded machine. Values are identical.
 //   Ref/Bilinear...  a plain bilinear lookup of a baked 512² RGB float image (what a baked texture costs)
 //   Ref/Perlin3D...  libnoise 3D Perlin, 3 evaluations per pixel (one per colour channel), as many
 //                    octaves as the texture has bands (only when libnoise-dev is installed)
@@ -210,6 +215,39 @@ void bm_render(benchmark::State& state, const Model* model, bool solid, int thre
                    ", hist=" + model->histogram + ", threads=" + std::to_string(threads));
 }
 
+// One thread, the model's raster method or the point loop (the scalar reference) over the same
+// 8-row bands as render().
+void bm_raster(benchmark::State& state, const Model* model, bool solid, bool simd)
+{
+    const auto settings = raster_settings(*model, solid, 1);
+    constexpr int rows = 8;
+    std::vector<float> out(std::size_t(settings.width) * rows * 3);
+    const stochtex::Texture& texture = *model->texture;
+    for (auto _ : state) {
+        for (int y0 = 0; y0 < settings.height; y0 += rows) {
+            stochtex::RasterRegion region;
+            region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
+            region.du = region.dv = settings.units_per_pixel;
+            region.y0 = y0, region.width = settings.width, region.height = std::min(rows, settings.height - y0);
+            region.footprint = {region.du, 0, 0, region.dv};
+            const auto rgb = stochtex::RgbOutput::interleaved(out.data());
+            if (solid) {
+                if (simd) texture.eval_solid_region({region, settings.z}, rgb);
+                else texture.Texture::eval_solid_region({region, settings.z}, rgb);
+            } else {
+                if (simd) texture.eval_region(region, rgb);
+                else texture.Texture::eval_region(region, rgb);
+            }
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    set_pixel_rate(state, double(settings.width) * settings.height);
+    state.SetLabel(std::string(solid ? "3D" : "2D") + " filtered, bands=" + std::to_string(band_count(model->description)) +
+                   ", hist=" + model->histogram + ", " + (simd ? "raster method (SIMD)" : "point loop (scalar reference)") +
+                   ", calling thread");
+}
+
 // Reference (a): bilinear lookup, repeat wrap, of a baked 512² RGB float image, on one thread.
 // The lookups are offset by a non-integer number of texels so every one really interpolates.
 inline void bilinear_repeat(const Image& baked, double u, double v, float* out)
@@ -306,7 +344,7 @@ public:
         for (const auto& [name, entry] : medians()) width = std::max(width, int(name.size()));
         bool header = false;
         for (const auto& [name, entry] : medians()) {
-            if (name.rfind("Render", 0) != 0) continue;
+            if (name.rfind("Render", 0) != 0 && name.rfind("Raster", 0) != 0) continue;
             if (!header) {
                 std::printf("\nComparison (median Mpix/s of this run; x = speed relative to the reference):\n");
                 if (bilinear) std::printf("  %-*s %9.2f Mpix/s  (%s)\n", width, "reference: bilinear baked", bilinear->rate, bilinear->label.c_str());
@@ -314,6 +352,11 @@ public:
                 header = true;
             }
             std::printf("  %-*s %9.2f Mpix/s", width, name.c_str(), entry.rate);
+            if (name.rfind("Raster", 0) == 0 && name.find("/path:simd") != std::string::npos) {
+                std::string reference_name = name;
+                reference_name.replace(reference_name.find("/path:simd"), 10, "/path:point");
+                if (const Entry* reference = find(reference_name)) std::printf("  %7.2fx point loop", entry.rate / reference->rate);
+            }
             if (bilinear) std::printf("  %8.4fx bilinear", entry.rate / bilinear->rate);
             if (perlin) std::printf("  %7.3fx Perlin", entry.rate / perlin->rate);
             std::printf("\n");
@@ -323,19 +366,11 @@ public:
 
 };
 
-bool console_format(int argc, char** argv)
-{
-    for (int i = 1; i < argc; ++i)
-        if (std::strncmp(argv[i], "--benchmark_format=", 19) == 0) return std::strcmp(argv[i] + 19, "console") == 0;
-    const char* env = std::getenv("BENCHMARK_FORMAT");
-    return !env || std::strcmp(env, "console") == 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    const bool console = console_format(argc, argv);
+    const bool console = stochtex::bench::console_format(argc, argv);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
@@ -372,6 +407,14 @@ int main(int argc, char** argv)
                 benchmark::RegisterBenchmark(name.c_str(), bm_render, model, solid, threads)
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime();
+            }
+    for (bool solid : {false, true})
+        for (const Model* model : {&hist_on, &hist_off})
+            for (bool simd : {true, false}) {
+                const std::string name = std::string(solid ? "Raster3D/" : "Raster2D/") + size + "/bands:" +
+                                         std::to_string(band_count(model->description)) + "/hist:" + model->histogram +
+                                         (simd ? "/path:simd" : "/path:point");
+                benchmark::RegisterBenchmark(name.c_str(), bm_raster, model, solid, simd)->Unit(benchmark::kMillisecond);
             }
     benchmark::RegisterBenchmark(("Ref/BilinearBaked/" + size).c_str(), bm_bilinear_baked, &baked)
         ->Unit(benchmark::kMillisecond)

@@ -14,6 +14,7 @@
 #include <stochtex/stex_file.h>
 
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/parallel.h>
 #include <OpenImageIO/strutil.h>
 
 #include <algorithm>
@@ -22,6 +23,8 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 
 OIIO_PLUGIN_NAMESPACE_BEGIN
@@ -86,6 +89,8 @@ public:
     ImageSpec spec_dimensions(int subimage, int miplevel) override;
     bool read_native_scanline(int subimage, int miplevel, int y, int z, void* data) override;
     bool read_native_tile(int subimage, int miplevel, int x, int y, int z, void* data) override;
+    bool read_native_tiles(int subimage, int miplevel, int xbegin, int xend, int ybegin, int yend, int zbegin,
+                           int zend, void* data) override;
 
 private:
     bool apply_hints(const ImageSpec& config, stochtex::TextureDescription& description,
@@ -326,6 +331,72 @@ bool StexInput::read_native_tile(int subimage, int miplevel, int x, int y, int /
         std::copy_n(&region[std::size_t(row) * w * channels], std::size_t(w) * channels,
                     out + std::size_t(row) * tile_w * channels);
     return true;
+}
+
+bool StexInput::read_native_tiles(int subimage, int miplevel, int xbegin, int xend, int ybegin, int yend, int zbegin,
+                                  int zend, void* data)
+{
+    // A block of whole tiles (read_image(), oiiotool, the ImageCache): rows of xend − xbegin
+    // texels, where the block may hang over the level's right and bottom edges by less than a
+    // tile (that part is zeroed, as in read_native_tile). The block is filled as bands of a
+    // tile's rows on OIIO's thread pool (the ImageInput's threads() setting): each texel depends
+    // on its own position only, so the values do not depend on the split.
+    if (!valid_level(subimage, miplevel)) {
+        errorfmt("{}: no subimage {} level {}", filename_, subimage, miplevel);
+        return false;
+    }
+    const ImageSpec& spec = level_specs_[miplevel];
+    const auto whole_tiles = [](int begin, int end, int size, int tile) {
+        return begin >= 0 && begin < size && begin < end && begin % tile == 0 && end % tile == 0 && end - size < tile;
+    };
+    const auto clipped = [](int begin, int end, int size, int tile) {
+        return begin >= 0 && begin % tile == 0 && begin < end && end == size;
+    };
+    const auto valid = [&](int begin, int end, int size, int tile) {
+        return whole_tiles(begin, end, size, tile) || clipped(begin, end, size, tile);
+    };
+    if (!valid(xbegin, xend, spec.width, spec.tile_width) || !valid(ybegin, yend, spec.height, spec.tile_height) ||
+        zbegin != 0 || zend != 1) {
+        errorfmt("{}: no block of tiles [{}, {}) x [{}, {}) x [{}, {}) in level {}", filename_, xbegin, xend, ybegin,
+                 yend, zbegin, zend, miplevel);
+        return false;
+    }
+    const int stride = xend - xbegin, channels = spec.nchannels;
+    const int w = std::min(xend, spec.width) - xbegin, y_stop = std::min(yend, spec.height);
+    float* out = static_cast<float*>(data);
+    const auto row_at = [&](int64_t y) { return out + std::size_t(y - ybegin) * std::size_t(stride) * std::size_t(channels); };
+    if (y_stop < yend) std::fill(row_at(y_stop), row_at(yend), 0.0f);
+    const stochtex::MipImage& image = *image_;
+    bool ok = true;
+    std::string problem;
+    std::mutex mutex;
+    parallel_for_chunked(
+        ybegin, y_stop, spec.tile_height,
+        [&](int64_t y0, int64_t y1) {
+            try {
+                const int rows = int(y1 - y0);
+                if (w == stride) {
+                    image.fill(miplevel, xbegin, int(y0), w, rows, row_at(y0));
+                    return;
+                }
+                std::vector<float> region(std::size_t(w) * std::size_t(rows) * std::size_t(channels));
+                image.fill(miplevel, xbegin, int(y0), w, rows, region.data());
+                for (int row = 0; row < rows; ++row) {
+                    float* target = row_at(y0 + row);
+                    std::copy_n(&region[std::size_t(row) * std::size_t(w) * std::size_t(channels)],
+                                std::size_t(w) * std::size_t(channels), target);
+                    std::fill(target + std::size_t(w) * std::size_t(channels),
+                              target + std::size_t(stride) * std::size_t(channels), 0.0f);
+                }
+            } catch (const std::exception& e) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                ok = false;
+                problem = e.what();
+            }
+        },
+        paropt(threads()));
+    if (!ok) errorfmt("{}: {}", filename_, problem);
+    return ok;
 }
 
 OIIO_PLUGIN_EXPORTS_BEGIN

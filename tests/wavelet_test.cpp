@@ -16,6 +16,7 @@
 #include <stochtex/models/wavelet_parameters.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstdio>
@@ -254,6 +255,81 @@ TEST(WaveletTexture, RenderIsIdenticalForAnyThreadCount)
         const Image two = render(*make_texture(d), settings);
         EXPECT_EQ(one.pixels, two.pixels) << (solid ? "solid" : "2D");
     }
+}
+
+namespace {
+
+/// Raster and solid-slice values against eval() / eval_solid(), bit for bit.
+void check_vectorised_paths_against_point_methods()
+{
+    // Analysis gives uniform histogram knots (the cubic's segment by one multiplication); a
+    // .stex stores them in float decimals, not uniform to 1e-9 (the segment by search): both.
+    const TextureDescription analysed = analyse_committed_exemplar(HistogramMode::on);
+    const TextureDescription descriptions[] = {analysed, parse_stex(format_stex(analysed), "t.stex"),
+                                               analyse_committed_exemplar(HistogramMode::off)};
+    for (const TextureDescription& d : descriptions) {
+        const double pixel = 1.0 / d.pixels_per_unit;
+        const auto plain = make_texture(d);
+        const auto periodic = make_periodic_texture(d, {0.75, 0.5});
+        for (const Texture* texture : {plain.get(), periodic.get()})
+            for (double footprint_px : {0.0, 1.0, 2.6, 37.0}) {
+                RasterRegion region;
+                region.origin_u = -0.41, region.origin_v = 0.23;
+                region.du = 1.1 * pixel, region.dv = 0.8 * pixel;
+                region.x0 = 3, region.y0 = -7, region.width = 77, region.height = 5;
+                region.footprint = Footprint2D::square(footprint_px * pixel);
+                const std::size_t n = std::size_t(region.width) * region.height;
+                std::vector<float> planes(3 * n), rgb(3 * n);
+                texture->eval_region(region, RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n));
+                texture->eval_region(region, rgb.data());
+                for (int y = 0; y < region.height; ++y)
+                    for (int x = 0; x < region.width; ++x) {
+                        const std::size_t p = std::size_t(y) * region.width + x;
+                        const Rgb expected = texture->eval({region.u(x), region.v(y)}, region.footprint);
+                        for (int c = 0; c < 3; ++c) {
+                            ASSERT_EQ(planes[c * n + p], expected[c]) << x << ", " << y << " at " << footprint_px << " px";
+                            ASSERT_EQ(rgb[3 * p + c], expected[c]) << x << ", " << y << " at " << footprint_px << " px";
+                        }
+                    }
+            }
+        // At 5e9 texture units the lattice indices pass 2^31 (positions may reach 2^45 exemplar pixels).
+        const std::pair<double, double> slices[] = {{0.37, 1.0}, {0.37, 3.3}, {0.37, 29.0}, {5e9, 1.0}, {5e9, 3.3}};
+        for (const auto& [origin, footprint_px] : slices) {
+            SolidRegion slice;
+            slice.plane.origin_u = origin, slice.plane.origin_v = -1.9;
+            slice.plane.du = 0.9 * pixel, slice.plane.dv = 1.2 * pixel;
+            slice.plane.x0 = -4, slice.plane.y0 = 11, slice.plane.width = 61, slice.plane.height = 4;
+            slice.plane.footprint = Footprint2D::square(footprint_px * pixel);
+            slice.w = -0.77;
+            std::vector<float> rgb(std::size_t(slice.plane.width) * slice.plane.height * 3);
+            plain->eval_solid_region(slice, RgbOutput::interleaved(rgb.data()));
+            for (int y = 0; y < slice.plane.height; ++y)
+                for (int x = 0; x < slice.plane.width; ++x) {
+                    const Rgb expected = plain->eval_solid(slice.point(x, y));
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_EQ(rgb[(std::size_t(y) * slice.plane.width + x) * 3 + c], expected[c])
+                            << "solid " << x << ", " << y << " at " << footprint_px << " px";
+                }
+        }
+    }
+}
+
+}  // namespace
+
+TEST(WaveletTexture, VectorisedRasterPathsEqualThePointMethodsBitForBit)
+{
+    // The SIMD raster (Highway, the CPU's best instruction set) performs eval()'s operations in
+    // eval()'s order: every value must be equal, not close. Widths that are not a multiple of any
+    // vector length (vector loop and scalar tail), footprints that keep every band, fade some
+    // and drop most (the Gauss–Hermite histogram filter), planar and interleaved output, the
+    // periodic form and solid slices; histograms on (the monotone-cubic batch) and off; on every
+    // instruction set Highway compiled the kernels for that this CPU has.
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        check_vectorised_paths_against_point_methods();
+    }
+    hwy::SetSupportedTargetsForTest(0);
 }
 
 TEST(WaveletTexture, MinificationConvergesToTheMean)

@@ -34,6 +34,15 @@ struct RasterRegion {
 struct SolidRegion {
     RasterRegion plane;
     double w = 0;
+    /// Pixel (i, j) as a surface point: normal +w, the plane's footprint as its derivatives.
+    SurfacePoint point(int i, int j) const
+    {
+        SurfacePoint point;
+        point.p = {plane.u(i), plane.v(j), w};
+        point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
+        point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
+        return point;
+    }
 };
 
 /// 2D points, each with its own footprint (count of each).

@@ -24,6 +24,12 @@ public:
     /// in the same units (0 when nothing was removed).
     Rgb to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const;
 
+    /// to_rgb() for `count` items sharing one dropped_sigma (a raster region): item i has
+    /// z[c] = gain · kept[c][i] / σ_M[c] and goes to out item first + i. Bit-identical to
+    /// to_rgb() (colour_mapping_batch.cpp: vectorised, the same operations in the same order).
+    void to_rgb(const std::array<const double*, 3>& kept, double gain, const std::array<double, 3>& dropped_sigma,
+                const RgbOutput& out, std::size_t first, std::size_t count) const;
+
     /// The expected value of the texture (everything filtered away).
     Rgb mean() const { return to_rgb({0, 0, 0}, {1, 1, 1}); }
 

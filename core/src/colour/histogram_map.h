@@ -20,6 +20,8 @@ public:
     MonotoneCubic(std::vector<double> x, std::vector<double> y);
 
     double operator()(double t) const;
+    /// out[i] = (*this)(t[i]) for i < count, bit-identical, vectorised (colour_mapping_batch.cpp).
+    void eval(const double* t, double* out, std::size_t count) const;
     bool empty() const { return x_.empty(); }
     /// The Hermite tangents at the knots (after the Fritsch–Carlson limiter), for exporters.
     const std::vector<double>& slopes() const { return slope_; }

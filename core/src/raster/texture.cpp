@@ -25,14 +25,8 @@ void Texture::eval_points(const PointBatch& points, const RgbOutput& out) const
 void Texture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
 {
     const RasterRegion& plane = region.plane;
-    SurfacePoint point;  // normal +w: the plane's
-    point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
-    point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
     for (int j = 0; j < plane.height; ++j)
-        for (int i = 0; i < plane.width; ++i) {
-            point.p = {plane.u(i), plane.v(j), region.w};
-            out.set(std::size_t(j) * plane.width + i, eval_solid(point));
-        }
+        for (int i = 0; i < plane.width; ++i) out.set(std::size_t(j) * plane.width + i, eval_solid(region.point(i, j)));
 }
 
 void Texture::eval_solid_points(const SurfaceBatch& points, const RgbOutput& out) const

@@ -113,7 +113,14 @@ public:
     static const WaveletNoise3D& shared();
     WaveletNoise3D(int tile_size, std::uint64_t tile_seed);
 
+    /// N(x, y, z), lattice units: the 3 × 3 × 3 coefficients combined in z and y first, then in x
+    /// (the order a solid raster shares along a row: eval_row()).
     float eval(double x, double y, double z) const;
+    /// A row of a solid raster at lattice (y, z): C[x] for the size() lattice columns x, then
+    /// C[0], C[1] again (size() + 2 floats), the coefficients combined in z and y with eval()'s
+    /// weights and order, so that N(x, y, z) = wx0·C[i] + wx1·C[i+1] + wx2·C[i+2] with
+    /// i = wx.first & (size − 1): bit-identical to eval().
+    void eval_row(double y, double z, float* columns) const;
     int tile_size() const { return size_; }
     double variance() const { return variance_; }
     /// The B-spline coefficients, tile_size³ floats, index (z · size + y) · size + x (exporters).
@@ -129,14 +136,14 @@ private:
 /// Quadratic B-spline weights for the three coefficients around x, and the index of the first.
 /// (Cook–DeRose evaluate at "mid = ceil(x - 1/2)"; this is the same spline, written for floor.)
 struct QuadraticBSplineWeights {
-    int first;     ///< index of the leftmost of the three coefficients
+    std::int64_t first;  ///< index of the leftmost of the three coefficients (positions reach 2^45 cells)
     float w[3];
     explicit QuadraticBSplineWeights(double x)
     {
         const double shifted = x - 0.5;
         const double base = std::floor(shifted);
         const float t = float(shifted - base);  // in [0, 1)
-        first = int(base);
+        first = std::int64_t(base);
         w[0] = 0.5f * (1 - t) * (1 - t);
         w[2] = 0.5f * t * t;
         w[1] = 1 - w[0] - w[2];

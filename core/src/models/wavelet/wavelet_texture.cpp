@@ -4,6 +4,7 @@
 #include "models/wavelet/band_filter.h"
 #include "numerics/random.h"
 #include "models/wavelet/wavelet_noise.h"
+#include "models/wavelet/wavelet_raster_kernels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +65,6 @@ WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2
 WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2* period)
     : Texture(description),
       sigma_m_(band_sigmas(description.parameters.get<WaveletParameters>())),
-      solid_gain_(std::sqrt(WaveletNoise2D::shared().variance() / WaveletNoise3D::shared().variance())),
       colour_(description, sigma_m_)
 {
     const auto& weights = description.parameters.get<WaveletParameters>().band_weights;
@@ -107,6 +107,14 @@ WaveletTexture::WaveletTexture(const TextureDescription& description, const Vec2
     }
 }
 
+double WaveletTexture::solid_gain()
+{
+    // The 3D tile (64³ coefficients and its measured variance) is the costliest table of the
+    // model: built here, at the first solid evaluation, not with every texture.
+    static const double gain = std::sqrt(WaveletNoise2D::shared().variance() / WaveletNoise3D::shared().variance());
+    return gain;
+}
+
 WaveletTexture::Fades WaveletTexture::fades(double footprint_px) const
 {
     // The fade depends on the band only, not on the channel.
@@ -135,18 +143,25 @@ Rgb WaveletTexture::finish(const std::array<double, 3>& kept, double gain, const
     return colour_.to_rgb(z, fades.dropped_sigma);
 }
 
+template <class BandSum>
+void WaveletTexture::for_each_kept_band(const Fades& fades, const BandSum& band_sum) const
+{
+    // synthesize()'s loop: channel by channel, band by band, the bands the fades keep.
+    for (int c = 0; c < 3; ++c) {
+        const auto& bands = bands_[c];
+        for (std::size_t j = 0; j < bands.size(); ++j) {
+            const float fade = fades.band[j];
+            if (fade > 0 && bands[j].weight != 0) band_sum(c, bands[j], fade * bands[j].weight);
+        }
+    }
+}
+
 template <class BandNoise>
 Rgb WaveletTexture::synthesize(double footprint_px, double gain, const BandNoise& band_noise) const
 {
     const Fades f = fades(footprint_px);
     std::array<double, 3> kept{};
-    for (int c = 0; c < 3; ++c) {
-        const auto& bands = bands_[c];
-        for (std::size_t j = 0; j < bands.size(); ++j) {
-            const float fade = f.band[j];
-            if (fade > 0 && bands[j].weight != 0) kept[c] += fade * bands[j].weight * band_noise(bands[j]);
-        }
-    }
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) { kept[c] += fade_weight * band_noise(band); });
     return finish(kept, gain, f);
 }
 
@@ -163,7 +178,7 @@ Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
     const WaveletNoise3D& noise = WaveletNoise3D::shared();
     const double footprint_px = point.major_axis() * description().pixels_per_unit;
     const auto& p = point.p;
-    return synthesize(footprint_px, solid_gain_, [&](const Band& band) {
+    return synthesize(footprint_px, solid_gain(), [&](const Band& band) {
         const double s = band.solid_scale;
         return noise.eval(p[0] * s + band.offset[0], p[1] * s + band.offset[1], p[2] * s + band.offset[2]);
     });
@@ -173,48 +188,100 @@ Rgb WaveletTexture::eval_solid(const SurfacePoint& point) const
 
 namespace stochtex {
 
+struct WaveletTexture::RasterScratch {
+    std::vector<double> kept;  // 3 planes of `pixels`: Σ_j fade_j w_cj (gain_j) N_j per channel
+    std::vector<std::int32_t> index, group;
+    std::vector<float> w0, w1, w2, combined;
+    wavelet_raster::ColumnSplines columns() const { return {index.data(), w0.data(), w1.data(), w2.data(), group.data()}; }
+    void column_splines(const wavelet_raster::ColumnPositions& positions, std::size_t count)
+    {
+        wavelet_raster::column_splines(positions, count, index.data(), w0.data(), w1.data(), w2.data());
+    }
+    void plan(std::size_t count) { wavelet_raster::plan_columns(index.data(), count, group.data()); }
+    void reserve_combined(std::size_t span)
+    {
+        if (combined.size() < span + wavelet_raster::combined_padding) combined.assign(span + wavelet_raster::combined_padding, 0.0f);
+    }
+};
+
+WaveletTexture::RasterScratch& WaveletTexture::raster_scratch(std::size_t pixels, std::size_t columns, std::size_t span)
+{
+    // Kept per thread: a plugin tile or a render's row band allocates nothing once its thread
+    // has seen a region as large.
+    thread_local RasterScratch scratch;
+    scratch.kept.assign(3 * pixels, 0.0);
+    if (scratch.index.size() < columns) {
+        scratch.index.resize(columns), scratch.group.resize(columns);
+        scratch.w0.resize(columns), scratch.w1.resize(columns), scratch.w2.resize(columns);
+    }
+    scratch.reserve_combined(span);
+    return scratch;
+}
+
 void WaveletTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) const
 {
     // eval() at every pixel, with the work that depends on one coordinate only done once: the
     // fades for the whole region, a band's x-spline once per column, and per row its y-spline
     // and the three coefficient rows combined once (then 3 products per pixel instead of 12).
-    // The arithmetic is eval()'s, in the same order: bit-identical values.
+    // The per-pixel loops and the colour mapping are vectorised (wavelet_raster_kernels.h,
+    // ColourMapping's batch to_rgb) with eval()'s arithmetic in eval()'s order: bit-identical.
     const Fades f = fades(region.footprint.major_axis() * description().pixels_per_unit);
-    const std::size_t pixels = std::size_t(region.width) * region.height;
-    std::vector<std::array<double, 3>> kept(pixels, std::array<double, 3>{});
-    std::vector<LatticeSpline> columns(region.width);
-    std::vector<float> combined;
-    for (int c = 0; c < 3; ++c) {
-        const auto& bands = bands_[c];
-        for (std::size_t j = 0; j < bands.size(); ++j) {
-            const Band& band = bands[j];
-            const float fade = f.band[j];
-            if (!(fade > 0 && band.weight != 0)) continue;
-            const double fade_weight = fade * band.weight;
-            const WaveletNoise2D& tile = *band.tile;
-            std::int64_t lo = INT64_MAX, hi = INT64_MIN;  // the padded columns this band reads
-            for (int i = 0; i < region.width; ++i) {
-                columns[i] = tile.spline_x(region.u(i) * band.scale[0] + band.offset[0]);
-                lo = std::min(lo, columns[i].first), hi = std::max(hi, columns[i].first + 2);
-            }
-            combined.resize(std::size_t(hi - lo + 1));
-            const std::size_t width = tile.padded_width();
-            for (int y = 0; y < region.height; ++y) {
-                const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
-                const float* coefficients = tile.padded_row(row.first);
-                for (std::int64_t k = lo; k <= hi; ++k)
-                    combined[std::size_t(k - lo)] = WaveletNoise2D::combine_rows(row, coefficients + k, width);
-                std::array<double, 3>* out = &kept[std::size_t(y) * region.width];
-                for (int i = 0; i < region.width; ++i) {
-                    const LatticeSpline& sx = columns[i];
-                    const float* at = &combined[std::size_t(sx.first - lo)];
-                    const float value = sx.w[0] * at[0] + sx.w[1] * at[1] + sx.w[2] * at[2];
-                    out[i][c] += fade_weight * (band.gain * double(value));
-                }
-            }
+    const std::size_t width = std::size_t(region.width), pixels = width * std::size_t(region.height);
+    RasterScratch& scratch = raster_scratch(pixels, width, 0);
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) {
+        double* kept = &scratch.kept[std::size_t(c) * pixels];
+        const WaveletNoise2D& tile = *band.tile;
+        // tile.spline_x() of every column, vectorised; then the padded columns it reads.
+        scratch.column_splines({region.origin_u, region.du, region.x0, band.scale[0], band.offset[0],
+                                tile.period_x(), 1.0 / tile.period_x()},
+                               width);
+        const auto [lo_at, hi_at] = std::minmax_element(scratch.index.begin(), scratch.index.begin() + std::ptrdiff_t(width));
+        const std::int32_t lo = *lo_at, hi = *hi_at + 2;
+        for (std::size_t i = 0; i < width; ++i) scratch.index[i] -= lo;
+        scratch.plan(width);
+        const std::size_t span = std::size_t(hi - lo + 1);
+        scratch.reserve_combined(span);
+        for (int y = 0; y < region.height; ++y) {
+            const LatticeSpline row = tile.spline_y(region.v(y) * band.scale[1] + band.offset[1]);
+            wavelet_raster::combine_rows(row.w, tile.padded_row(row.first) + lo, tile.padded_width(), span,
+                                         scratch.combined.data());
+            wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), band.gain, fade_weight,
+                                            kept + std::size_t(y) * width, width);
         }
-    }
-    for (std::size_t p = 0; p < pixels; ++p) rgb.set(p, finish(kept[p], 1.0, f));
+    });
+    colour_.to_rgb({&scratch.kept[0], &scratch.kept[pixels], &scratch.kept[2 * pixels]}, 1.0, f.dropped_sigma, rgb, 0,
+                   pixels);
+}
+
+void WaveletTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& rgb) const
+{
+    // eval_solid() on a plane w = const: every pixel has the plane's footprint (one set of
+    // fades), a band's x-spline is shared by a column, and a row shares its y- and z-splines:
+    // WaveletNoise3D::eval_row combines the row's 3 × 3 coefficient rows once for every lattice
+    // column, leaving 3 products per pixel (eval()'s order: bit-identical values).
+    const RasterRegion& plane = region.plane;
+    const Fades f = fades(region.point(0, 0).major_axis() * description().pixels_per_unit);
+    const WaveletNoise3D& noise = WaveletNoise3D::shared();
+    const std::size_t width = std::size_t(plane.width), pixels = width * std::size_t(plane.height);
+    RasterScratch& scratch = raster_scratch(pixels, width, std::size_t(noise.tile_size()) + 2);
+    for_each_kept_band(f, [&](int c, const Band& band, double fade_weight) {
+        double* kept = &scratch.kept[std::size_t(c) * pixels];
+        const double s = band.solid_scale;
+        // QuadraticBSplineWeights of every column, the first index wrapped into the tile.
+        scratch.column_splines({plane.origin_u, plane.du, plane.x0, s, band.offset[0], noise.tile_size(),
+                                1.0 / noise.tile_size()},
+                               width);
+        scratch.plan(width);
+        const double z = region.w * s + band.offset[2];
+        for (int y = 0; y < plane.height; ++y) {
+            noise.eval_row(plane.v(y) * s + band.offset[1], z, scratch.combined.data());
+            // gain 1: the solid band's value enters the sum as it is (eval_solid()).
+            wavelet_raster::accumulate_band(scratch.columns(), scratch.combined.data(), 1.0, fade_weight,
+                                            kept + std::size_t(y) * width, width);
+        }
+    });
+    colour_.to_rgb({&scratch.kept[0], &scratch.kept[pixels], &scratch.kept[2 * pixels]}, solid_gain(), f.dropped_sigma,
+                   rgb, 0, pixels);
 }
 
 }  // namespace stochtex

@@ -33,6 +33,7 @@ public:
     using Texture::eval_region;
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
+    void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
     Rgb mean() const override { return colour_.mean(); }
 
     /// σ_M of each channel (eq. 2) with this build's measured σ_N².
@@ -40,7 +41,8 @@ public:
     /// Band j of channel c as synthesised (weight, tile, lattice scales and offsets) and the
     /// solid gain: for exporters that re-implement synthesis elsewhere (wavelet_shader_data.h).
     const auto& band(int c, std::size_t j) const { return bands_[c][j]; }
-    double solid_gain() const { return solid_gain_; }
+    /// sqrt(σ_N²(2D) / σ_N²(3D)); builds the 3D tile on first use (2D textures never need it).
+    static double solid_gain();
 
 private:
     struct Band {
@@ -62,6 +64,14 @@ private:
     Fades fades(double footprint_px) const;
     /// kept[c] = Σ_j fade_j w_cj N_j: to RGB through the colour mapping.
     Rgb finish(const std::array<double, 3>& kept, double gain, const Fades& fades) const;
+    /// The per-thread scratch of the raster paths: `pixels` zeroed sums per channel, and room for
+    /// `columns` column splines and `span` combined lattice columns.
+    struct RasterScratch;
+    static RasterScratch& raster_scratch(std::size_t pixels, std::size_t columns, std::size_t span);
+    /// band_sum(c, band, fade · weight) for every band of every channel the fades keep, in
+    /// synthesize()'s order (the raster paths).
+    template <class BandSum>
+    void for_each_kept_band(const Fades& fades, const BandSum& band_sum) const;
     template <class BandNoise>
     Rgb synthesize(double footprint_px, double gain, const BandNoise& band_noise) const;
 
@@ -70,7 +80,6 @@ private:
     /// period and count as filtered away.
     std::size_t present_bands_ = 0;
     std::array<double, 3> sigma_m_{};
-    double solid_gain_ = 1;
     ColourMapping colour_;
 };
 
