@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The sanitizer lane of the test command (scripts/run-tests.sh; docs/limits.md, "Fuzzing and
+# sanitizers"): one clang build, -DSTOCHTEX_ASAN=ON -DSTOCHTEX_FUZZERS=ON, of only what its tests
+# need (the core, stex, the plugin, the asan label's test programs and the fuzz harnesses), then
+# `ctest -L 'asan|fuzz'`: the parser, CLI-robustness and plugin tests under AddressSanitizer +
+# UndefinedBehaviorSanitizer, and each libFuzzer harness for a fixed count from fresh seeds.
+#   usage: scripts/sanitizer-lane.sh [BUILD_DIR]    (default build-asan; needs clang-14)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build-asan}"
+jobs="$(nproc)"
+start=$(date +%s)
+CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTOCHTEX_ASAN=ON -DSTOCHTEX_FUZZERS=ON \
+  -DSTOCHTEX_BUILD_BENCH=OFF >/dev/null
+cmake --build "$build" -j"$jobs" --target stex stex_imageio stochtex_fuzzers \
+  stex_file_test hardening_test cli_test plugin_test
+built=$(date +%s)
+ctest --test-dir "$build" -L 'asan|fuzz' --output-on-failure -j"$jobs"
+echo "sanitizer-lane: build $((built - start)) s, tests $(( $(date +%s) - built )) s"
