@@ -108,7 +108,7 @@ for h in "${harnesses[@]}"; do
   log="$build/fuzz/$h.log"
   start=$(date +%s)
   set +e
-  (cd "$findings" && "$program" "${limit[@]}" -seed="$seed" "${dict[@]}" -max_len=65536 -timeout=20 -rss_limit_mb=3072 \
+  (cd "$findings" && "$program" "${limit[@]}" -seed="$seed" "${dict[@]}" -max_len=65536 -timeout=120 -rss_limit_mb=3072 \
      -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" "$seeds/$h") >"$log" 2>&1
   rc=$?
   set -e
