@@ -13,7 +13,8 @@
 # analysed from it, a ptm fitted to a relief's lights with its .lp, JSON light list and
 # coefficient EXR, and the .stex files behind plugin open hints. The dictionary (DIR/fuzz/stex.dict)
 # is every JSON key of those files plus the plugin's hint names.
-# A finding is a file in DIR/fuzz/findings/<harness>/ (crash-*, leak-*, timeout-*, oom-*);
+# A finding is a file in DIR/fuzz/findings/<harness>/ (crash-*, leak-*, timeout-*, oom-*; with
+# --runs DIR/fuzz/ci/findings/<harness>/), emptied when the harness starts;
 # reproduce it with DIR/fuzz/<harness>_fuzzer FILE. Exit status 1 if any harness found one.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -93,11 +94,14 @@ make_seeds() {
 
 export STOCHTEX_FUZZ_DATA="$seeds"
 status=0
-printf '%-18s %12s %10s %8s %9s  %s\n' harness execs "exec/s" corpus findings "time (s)" >"$build/fuzz/summary.txt"
+summary="$build/fuzz/summary${runs:+-ci}.txt"
+printf '%-18s %12s %10s %8s %9s  %s\n' harness execs "exec/s" corpus findings "time (s)" >"$summary"
 for h in "${harnesses[@]}"; do
   program="$build/fuzz/${h}_fuzzer"
   [ -x "$program" ] || { echo "fuzz.sh: $program is not built" >&2; exit 2; }
-  findings="$build/fuzz/findings/$h"; mkdir -p "$findings"
+  # CI runs (--runs) keep their logs and findings apart from long runs of the same build.
+  out="$build/fuzz"; [ -n "$runs" ] && out="$build/fuzz/ci"
+  findings="$out/findings/$h"; rm -rf "$findings"; mkdir -p "$findings"
   dict=()
   case "$h" in stex|light_set|plugin_open) dict=(-dict="$build/fuzz/stex.dict") ;; esac
   if [ -n "$runs" ]; then
@@ -105,7 +109,7 @@ for h in "${harnesses[@]}"; do
   else
     corpus="$build/fuzz/corpus/$h"; mkdir -p "$corpus"; limit=(-max_total_time="$seconds")
   fi
-  log="$build/fuzz/$h.log"
+  log="$out/$h.log"
   start=$(date +%s)
   set +e
   (cd "$findings" && "$program" "${limit[@]}" -seed="$seed" "${dict[@]}" -max_len=65536 -timeout=120 -rss_limit_mb=3072 \
@@ -115,9 +119,10 @@ for h in "${harnesses[@]}"; do
   elapsed=$(( $(date +%s) - start ))
   execs=$(awk -F: '/stat::number_of_executed_units/ {gsub(/ /, "", $2); print $2}' "$log" | tail -1)
   rate=$(awk -F: '/stat::average_exec_per_sec/ {gsub(/ /, "", $2); print $2}' "$log" | tail -1)
-  found=$(find "$findings" -type f | wc -l)
+  # Findings: crashes, leaks, timeouts, out-of-memory (slow-unit-* files are only reports).
+  found=$(find "$findings" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
   size=$(find "$corpus" -type f | wc -l)
-  printf '%-18s %12s %10s %8s %9s  %s\n' "$h" "${execs:-?}" "${rate:-?}" "$size" "$found" "$elapsed" | tee -a "$build/fuzz/summary.txt"
+  printf '%-18s %12s %10s %8s %9s  %s\n' "$h" "${execs:-?}" "${rate:-?}" "$size" "$found" "$elapsed" | tee -a "$summary"
   [ -n "$runs" ] && rm -rf "$corpus"
   if [ $rc -ne 0 ] || [ "$found" -gt 0 ]; then
     status=1
