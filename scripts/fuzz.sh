@@ -105,7 +105,8 @@ for h in "${harnesses[@]}"; do
   dict=()
   case "$h" in stex|light_set|plugin_open) dict=(-dict="$build/fuzz/stex.dict") ;; esac
   if [ -n "$runs" ]; then
-    corpus="$(mktemp -d)"; limit=(-runs="$runs")
+    # A fixed count, and a time cap so that a slow machine bounds the test command's time.
+    corpus="$(mktemp -d)"; limit=(-runs="$runs" -max_total_time=60)
   else
     corpus="$build/fuzz/corpus/$h"; mkdir -p "$corpus"; limit=(-max_total_time="$seconds")
   fi
