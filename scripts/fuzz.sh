@@ -118,8 +118,8 @@ for h in "${harnesses[@]}"; do
   rc=$?
   set -e
   elapsed=$(( $(date +%s) - start ))
-  execs=$(awk -F: '/stat::number_of_executed_units/ {gsub(/ /, "", $2); print $2}' "$log" | tail -1)
-  rate=$(awk -F: '/stat::average_exec_per_sec/ {gsub(/ /, "", $2); print $2}' "$log" | tail -1)
+  execs=$(awk '/stat::number_of_executed_units/ {print $NF}' "$log" | tail -1)
+  rate=$(awk '/stat::average_exec_per_sec/ {print $NF}' "$log" | tail -1)
   # Findings: crashes, leaks, timeouts, out-of-memory (slow-unit-* files are only reports).
   found=$(find "$findings" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
   size=$(find "$corpus" -type f | wc -l)
