@@ -11,7 +11,10 @@ cd "$(dirname "$0")/.."
 build="${1:-build-asan}"
 jobs="$(nproc)"
 start=$(date +%s)
-CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTOCHTEX_ASAN=ON -DSTOCHTEX_FUZZERS=ON \
+# Another clang (Debian 13 has clang-19): STOCHTEX_SANITIZER_CXX=clang++-19 (its C compiler is
+# the same name without "++").
+cxx="${STOCHTEX_SANITIZER_CXX:-clang++-14}"
+CC="${cxx/++/}" CXX="$cxx" cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTOCHTEX_ASAN=ON -DSTOCHTEX_FUZZERS=ON \
   -DSTOCHTEX_BUILD_BENCH=OFF >/dev/null
 cmake --build "$build" -j"$jobs" --target stex stex_imageio stochtex_fuzzers \
   stex_file_test hardening_test cli_test plugin_test
