@@ -106,7 +106,7 @@ for h in "${harnesses[@]}"; do
   case "$h" in stex|light_set|plugin_open) dict=(-dict="$build/fuzz/stex.dict") ;; esac
   if [ -n "$runs" ]; then
     # A fixed count, and a time cap so that a slow machine bounds the test command's time.
-    corpus="$(mktemp -d)"; limit=(-runs="$runs" -max_total_time=60)
+    corpus="$(mktemp -d)"; limit=(-runs="$runs" -max_total_time=30)
   else
     corpus="$build/fuzz/corpus/$h"; mkdir -p "$corpus"; limit=(-max_total_time="$seconds")
   fi
