@@ -95,6 +95,7 @@ void AnalyzeCommand::add_model_options(CLI::App& command)
 int AnalyzeCommand::run() const
 {
     const auto start = std::chrono::steady_clock::now();
+    check_output_path(output, "the texture");  // before the analysis: a typo costs nothing
     ImageReadOptions read_options;
     read_options.input_colour_space = colour_space;
     const Image image = read_image_linear(photo, read_options);
@@ -123,6 +124,7 @@ int AnalyzeCommand::run() const
 
 int RenderCommand::run() const
 {
+    check_image_output(output);  // the format and the folder, before the render
     TextureDescription description = read_stex(texture);
     if (seed >= 0) {
         if (seed > 0xffffffffll) throw Error("--seed: must fit in 32 bits");
@@ -217,6 +219,7 @@ int CompareCommand::run() const
 {
     ImageReadOptions read_options;
     read_options.input_colour_space = colour_space;
+    if (!output.empty()) check_image_output(output, "the figure");
     const Image photo_image = read_image_linear(photo, read_options);
     const TextureDescription description = read_stex(texture);
     RenderSettings settings;
@@ -284,6 +287,7 @@ int CompareCommand::run() const
 
 int MorphCommand::run() const
 {
+    check_output_path(output, "the texture");
     const TextureDescription result = stochtex::morph(read_stex(a), read_stex(b), t);
     write_stex(output, result);
     std::printf("wrote %s (t = %g between %s and %s)\n", output.c_str(), t, a.c_str(), b.c_str());
@@ -305,6 +309,8 @@ int PovCommand::run() const
     const std::filesystem::path image_path = std::filesystem::path(include_path).replace_extension(".exr");
     if (options.mode == pov::PovMode::baked && image_path == include_path)
         throw Error(output + ": the include would overwrite its own baked image; name it .inc");
+    check_output_path(include_path.string(), "the include");
+    if (options.mode == pov::PovMode::baked) check_image_output(image_path.string(), "the baked image");
     options.image_file_name = image_path.filename().string();
     options.bake_size = bake_size;
     options.source_name = std::filesystem::path(texture).filename().string();
@@ -353,6 +359,7 @@ int OslCommand::run() const
     namespace fs = std::filesystem;
     osl::OslShaderOptions options;
     options.shader_name = name.empty() ? osl::osl_shader_name_from_path(output) : name;
+    check_output_path(output, "the shader");
     const TextureDescription description = read_stex(texture);
     options.source_name = fs::path(texture).filename().string();
     // The images go beside the shader; the shader names them by absolute path unless

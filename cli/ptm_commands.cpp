@@ -4,6 +4,7 @@
 #include "plot.h"
 #include "progress_bar.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/lighting.h>
 #include <stochtex/models/ptm.h>
@@ -61,16 +62,29 @@ std::array<int, 4> parse_region(const std::string& text)
     return region;
 }
 
+/// An error relative to the photos' RMS, "(1.23 %" + tail; photos that are all black have no
+/// scale to relate to (the ratio would print as "-nan %").
+std::string relative_error(double rmse, double data_rms, const char* tail)
+{
+    char text[96];
+    if (data_rms > 0)
+        std::snprintf(text, sizeof text, "(%.2f %%%s)", 100 * rmse / data_rms, tail);
+    else
+        std::snprintf(text, sizeof text, "(no relative error: the photos are black, RMS 0)");
+    return text;
+}
+
 void print_fit(const PtmFit& fit, const LightSet& lights, bool per_light)
 {
-    std::printf("fit residual RMSE %.5f (%.2f %% of the photos' RMS %.5f)\n", fit.rmse, 100 * fit.rmse / fit.data_rms,
-                fit.data_rms);
+    char rms[48];
+    std::snprintf(rms, sizeof rms, " of the photos' RMS %.5f", fit.data_rms);
+    std::printf("fit residual RMSE %.5f %s\n", fit.rmse, relative_error(fit.rmse, fit.data_rms, rms).c_str());
     if (std::isnan(fit.loo_rmse)) {
         std::printf("leave-one-light-out: undefined (a light alone determines part of the fit; add lights)\n");
         return;
     }
-    std::printf("leave-one-light-out RMSE %.5f (%.2f %%) over %zu lights\n", fit.loo_rmse, 100 * fit.loo_rmse / fit.data_rms,
-                lights.images.size());
+    std::printf("leave-one-light-out RMSE %.5f %s over %zu lights\n", fit.loo_rmse,
+                relative_error(fit.loo_rmse, fit.data_rms, "").c_str(), lights.images.size());
     if (!per_light) return;
     std::printf("light  direction             LOO RMSE\n");
     for (std::size_t i = 0; i < lights.images.size(); ++i)
@@ -254,11 +268,11 @@ int PtmCommands::Options::run_fit() const
 {
     const auto start = Clock::now();
     const Vec3 evaluated_light = parse_light_direction(light);
+    check_output_path(output, "the texture");
     const LightSet set = read_light_set(lights);
-    std::vector<Image> photos;
     ImageReadOptions read_options;
     read_options.input_colour_space = colour_space;
-    for (const std::string& image : set.images) photos.push_back(read_image_linear(image, read_options, 8));
+    const std::vector<Image> photos = read_light_set_photos(set, read_options);
     const PtmFit fit = fit_ptm(photos, set.directions, ptm_colour_from_string(colour), terminal_progress_bar());
     TextureDescription description = make_ptm_description(fit.maps, evaluated_light);
     description.provenance =
@@ -273,6 +287,7 @@ int PtmCommands::Options::run_fit() const
 
 int PtmCommands::Options::run_synthesize() const
 {
+    check_output_path(output, "the texture");
     const TextureDescription exemplar = read_stex(input);
     if (!exemplar.parameters.holds<PtmParameters>()) throw Error(input + ": not a ptm texture (model '" + exemplar.model + "')");
     PtmSynthesisOptions options;
@@ -320,6 +335,7 @@ int PtmCommands::Options::run_synthesize() const
 
 int PtmCommands::Options::run_relight() const
 {
+    check_image_output(output);
     TextureDescription description = read_stex(input);
     if (!depends_on_light(description)) throw Error(input + ": model '" + description.model + "' does not depend on light");
     std::vector<Vec3> directions;
@@ -358,6 +374,8 @@ int PtmCommands::Options::run_export_maps() const
 {
     if (normal_output.empty() && albedo_output.empty() && reference_normals.empty() && reference_albedo.empty())
         throw Error("export-maps: give --normal and/or --albedo (or a reference to measure against)");
+    if (!normal_output.empty()) check_image_output(normal_output, "the normal map");
+    if (!albedo_output.empty()) check_image_output(albedo_output, "the albedo map");
     const TextureDescription description = read_stex(input);
     if (!description.parameters.holds<PtmParameters>()) throw Error(input + ": not a ptm texture (model '" + description.model + "')");
     const SurfaceMaps maps = estimate_surface_maps(*description.parameters.get<PtmParameters>().maps, normal_estimator_from_string(estimator));
@@ -409,6 +427,7 @@ int PtmCommands::Options::run_relief() const
 
 int PtmCommands::Options::run_unbounded() const
 {
+    check_output_path(output, "the texture");
     const TextureDescription source = read_stex(input);
     PtmUnboundedOptions options;
     options.triangle_edge = triangle_edge;

@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "progress_bar.h"
 
+#include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
@@ -98,6 +99,8 @@ bool TilingCommands::selected() const { return bool(*options_->tiling); }
 int TilingCommands::run() const
 {
     Options& o = *options_;
+    if (*o.colour_map || *o.phasor || *o.normal_map) check_output_path(o.output, "the texture");
+    else check_image_output(o.output);  // shade: before the render
     if (*o.colour_map) {
         o.source.source_name = std::filesystem::path(o.noise_a).filename().string() + " + " +
                                std::filesystem::path(o.noise_b).filename().string();

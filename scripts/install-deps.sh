@@ -10,6 +10,7 @@ packages=(
   libhwy-dev libtbb-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libnoise-dev
   povray python3-numpy
+  clang-14 libclang-rt-14-dev  # the sanitizer lane: ASan + UBSan, libFuzzer (scripts/sanitizer-lane.sh)
 )
 # Blender scene tests: blender, and xvfb for the tests of the add-on's interactive UI path.
 if [ "${1:-}" = "--with-blender" ]; then packages+=(blender xvfb); fi

@@ -8,3 +8,5 @@ bash scripts/install-deps.sh --with-blender
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+# The sanitizer lane (ASan + UBSan, libFuzzer; docs/limits.md): STOCHTEX_SANITIZER_LANE=OFF skips it.
+if [ "${STOCHTEX_SANITIZER_LANE:-ON}" != OFF ]; then bash scripts/sanitizer-lane.sh build-asan; fi

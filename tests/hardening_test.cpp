@@ -193,7 +193,8 @@ TEST(Hardening, RenderRejectsNonFiniteAndFarPositions)
             {"right edge", settings_with([](auto& s) { s.units_per_pixel = 1e30; })},
         };
         for (const auto& [name, settings] : bad) {
-            const std::string message = error_of([&] { stochtex::render(*texture, settings); });
+            const stochtex::RenderSettings& given = settings;  // a lambda cannot capture a binding (C++17)
+            const std::string message = error_of([&] { stochtex::render(*texture, given); });
             EXPECT_TRUE(contains(message, name)) << model << ": expected an error naming " << name << ", got '" << message << "'";
         }
         // Far but inside the bound: rendered, finite.
@@ -457,3 +458,160 @@ TEST(Hardening, TruncatedJpegIsRejected)
 }
 
 }  // namespace
+
+// ---- Light sidecars (issue 16's .lp findings) -------------------------------------------------
+
+namespace {
+
+/// `count` photos of the exemplar's top-left 16² (colour, or grey with 1 channel) in `dir`.
+void write_photos(const fs::path& dir, const std::vector<std::string>& names, int grey_from = 1 << 30)
+{
+    const stochtex::Image colour = crop(16);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const std::string path = (dir / names[i]).string();
+        if (int(i) < grey_from) {
+            stochtex::write_image(path, colour);
+            continue;
+        }
+        // A 1-channel PNG, as a grey export writes it.
+        std::vector<unsigned char> grey(16 * 16);
+        for (std::size_t p = 0; p < grey.size(); ++p) grey[p] = (unsigned char)(40 + p % 200);
+        auto output = OIIO::ImageOutput::create(path);
+        ASSERT_TRUE(output && output->open(path, OIIO::ImageSpec(16, 16, 1, OIIO::TypeDesc::UINT8)) &&
+                    output->write_image(OIIO::TypeDesc::UINT8, grey.data()) && output->close());
+    }
+}
+
+std::string lp_text(const std::vector<std::string>& names)
+{
+    const std::vector<stochtex::Vec3> directions = stochtex::spiral_light_directions(int(names.size()), 20);
+    std::string text = std::to_string(names.size()) + "\n";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        char direction[96];
+        std::snprintf(direction, sizeof direction, " %.9g %.9g %.9g\n", directions[i][0], directions[i][1], directions[i][2]);
+        text += names[i] + direction;
+    }
+    return text;
+}
+
+void write_text(const fs::path& path, const std::string& text)
+{
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+}  // namespace
+
+// Was: the same photo under two spellings (or through a link) was fitted twice, silently
+// weighting its light double. Now an error naming both lines (.lp) or entries (JSON).
+TEST(HardeningPtm, OnePhotoUnderTwoNamesIsRejectedNamingBoth)
+{
+    const fs::path dir = stochtex::test::temp_dir("LightSetSameFile");
+    fs::create_directories(dir / "sub");
+    write_photos(dir, {"a.png", "b.png"});
+    fs::create_symlink(dir / "a.png", dir / "link.png");
+    fs::create_hard_link(dir / "b.png", dir / "hard.png");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"a.png", "b.png", "./a.png"}, "lights.lp:4: image './a.png' is the same file as 'a.png' on line 2"},
+        {{"a.png", "sub/../b.png", "b.png"}, "lights.lp:4: image 'b.png' is the same file as 'sub/../b.png' on line 3"},
+        {{"a.png", "b.png", "link.png"}, "lights.lp:4: image 'link.png' is the same file as 'a.png' on line 2"},
+        {{"hard.png", "a.png", "b.png"}, "lights.lp:4: image 'b.png' is the same file as 'hard.png' on line 2"},
+        {{"a.png", "b.png", (dir / "a.png").string()}, "is the same file as 'a.png' on line 2"},
+    };
+    for (const auto& [names, message] : cases) {
+        write_text(dir / "lights.lp", lp_text(names));
+        const std::string error = error_of([&] { stochtex::read_light_set((dir / "lights.lp").string()); });
+        EXPECT_TRUE(contains(error, message)) << error;
+    }
+    write_text(dir / "lights.json", R"({"lights": [{"image": "a.png", "direction": [0, 0, 1]},
+                                                    {"image": "./link.png", "direction": [0.6, 0, 0.8]}]})");
+    const std::string error = error_of([&] { stochtex::read_light_set((dir / "lights.json").string()); });
+    EXPECT_TRUE(contains(error, "lights[1].image: './link.png' is the same file as 'a.png' at lights[0]")) << error;
+    // Distinct files (and names of files not there yet, for the reader alone) are fine.
+    write_text(dir / "lights.lp", lp_text({"a.png", "b.png", "sub/a.png"}));
+    EXPECT_EQ(stochtex::read_light_set((dir / "lights.lp").string()).images.size(), 3u);
+}
+
+// Was: a 1-channel photo among RGB ones was read as grey RGB and fitted, giving its light a
+// wrong chroma. Decided: rejected, naming both photos (an all-grey set is consistent and fits).
+TEST(HardeningPtm, GreyPhotoAmongColourPhotosIsRejected)
+{
+    const fs::path dir = stochtex::test::temp_dir("LightSetGrey");
+    const std::vector<std::string> names{"p0.png", "p1.png", "p2.png", "p3.png", "p4.png", "p5.png", "p6.png"};
+    write_photos(dir, names, 6);  // the last one grey
+    write_text(dir / "lights.lp", lp_text(names));
+    const stochtex::LightSet set = stochtex::read_light_set((dir / "lights.lp").string());
+    const std::string error = error_of([&] { stochtex::read_light_set_photos(set); });
+    EXPECT_TRUE(contains(error, "p6.png: the photo is grey (1 channel) but ")) << error;
+    EXPECT_TRUE(contains(error, "p0.png is colour (3 channels)")) << error;
+    const auto r = run_stex({"ptm", "fit", (dir / "lights.lp").string(), "-o", (dir / "t.stex").string()}, dir);
+    expect_clean_error(r, "p6.png");
+    EXPECT_FALSE(fs::exists(dir / "t.stex"));
+
+    const fs::path all_grey = stochtex::test::temp_dir("LightSetAllGrey");
+    write_photos(all_grey, names, 0);
+    write_text(all_grey / "lights.lp", lp_text(names));
+    const std::vector<stochtex::Image> photos =
+        stochtex::read_light_set_photos(stochtex::read_light_set((all_grey / "lights.lp").string()));
+    ASSERT_EQ(photos.size(), names.size());
+    EXPECT_EQ(photos[0].channels, 3);
+    EXPECT_EQ(photos[0].at(3, 2, 0), photos[0].at(3, 2, 2));  // grey replicated
+}
+
+// Was: "fit residual RMSE 0.00000 (-nan %)" for photos that are all black.
+TEST(HardeningPtm, BlackPhotosFitWithoutANanPercentage)
+{
+    const fs::path dir = stochtex::test::temp_dir("LightSetBlack");
+    const std::vector<std::string> names{"b0.png", "b1.png", "b2.png", "b3.png", "b4.png", "b5.png", "b6.png", "b7.png"};
+    for (const std::string& name : names) stochtex::write_image((dir / name).string(), stochtex::Image(16, 16, 3));
+    write_text(dir / "lights.lp", lp_text(names));
+    const auto r = run_stex({"ptm", "fit", (dir / "lights.lp").string(), "-o", (dir / "t.stex").string()}, dir);
+    ASSERT_TRUE(r.succeeded()) << r;
+    EXPECT_FALSE(contains(r.out, "nan")) << r;
+    EXPECT_TRUE(contains(r.out, "fit residual RMSE 0.00000 (no relative error: the photos are black, RMS 0)")) << r;
+}
+
+// ---- Outputs checked before the work ----------------------------------------------------------
+
+// Was: a render's output format and folder were found wrong only after the whole render. Each
+// writer checks its output first (check_image_output / check_output_path): a 16384² render, a
+// 32768² bake or an analysis with a bad output fails at once, naming the file and the problem.
+TEST(HardeningCli, OutputFormatAndFolderAreCheckedBeforeTheWork)
+{
+    const fs::path dir = stochtex::test::temp_dir("OutputChecks");
+    const std::string texture = (dir / "w.stex").string();
+    stochtex::write_stex(texture, analysed("wavelet"));
+    fs::create_directories(dir / "folder.exr");
+    fs::create_directories(dir / "locked");
+    fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+    const std::string photo = stochtex::test::repo_exemplar("concrete_512.png");
+    const std::string missing = (dir / "missing").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"render", texture, "--size", "16384x16384", "-o", (dir / "o.xyz").string()},
+         "o.xyz: cannot write image: '.xyz' is not an image format OpenImageIO writes"},
+        {{"render", texture, "--size", "16384x16384", "-o", (dir / "noextension").string()},
+         "noextension: cannot write image: no extension to choose a format by"},
+        {{"render", texture, "--size", "16384x16384", "-o", missing + "/o.exr"},
+         "o.exr: cannot write image: the folder " + missing + " does not exist"},
+        {{"render", texture, "--size", "16384x16384", "-o", (dir / "folder.exr").string()}, "folder.exr: cannot write image: it is a folder"},
+        {{"bake", texture, "--size", "32768", "-o", (dir / "b.png").string()}, "b.png: the png format cannot hold a tiled"},
+        {{"bake", texture, "--size", "32768", "-o", missing + "/b.exr"}, "b.exr: cannot write the bake: the folder"},
+        {{"analyze", photo, "--model", "lrp", "-o", missing + "/t.stex"}, "t.stex: cannot write the texture: the folder"},
+        {{"pov", texture, "--mode", "baked", "-o", missing + "/t.inc"}, "t.inc: cannot write the include: the folder"},
+        {{"compare", photo, texture, "-o", (dir / "figure.xyz").string()}, "figure.xyz: cannot write the figure"},
+    };
+    for (const auto& [args, message] : cases) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto r = run_stex(args, dir);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        expect_clean_error(r, message);
+        EXPECT_LT(seconds, 20) << "the check came after the work: " << r;  // the work alone takes minutes
+    }
+    if (geteuid() != 0) {  // root writes anywhere
+        const auto r = run_stex({"render", texture, "-o", (dir / "locked" / "o.exr").string()}, dir);
+        expect_clean_error(r, "is not writable");
+    }
+    // The library's own checks, for other callers.
+    EXPECT_EQ(error_of([&] { stochtex::check_image_output((dir / "a.exr").string()); }), "");
+    EXPECT_TRUE(contains(error_of([&] { stochtex::check_image_output((dir / "a.doc").string()); }), "'.doc' is not an image format"));
+}

@@ -2,23 +2,32 @@
 // example description (Model::example()). It iterates the registry, so a new model — the test
 // suite's own test_noise (tests/models/) among them — is covered without a test of its own.
 // Model-specific statistics stay in each model's test file.
+#include <stochtex/bake.h>
 #include <stochtex/describe.h>
 #include <stochtex/error.h>
+#include <stochtex/image.h>
+#include <stochtex/mip_image.h>
 #include <stochtex/model.h>
 #include <stochtex/morph.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
+#include <stochtex/pov/pov_include.h>
 
 #include "models/model.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
+#include <vector>
 
 namespace stochtex {
 namespace {
@@ -52,6 +61,21 @@ const TextureDescription& example_of(const std::string& name)
     auto found = examples.find(name);
     if (found == examples.end()) found = examples.emplace(name, find_model(name)->example()).first;
     return found->second;
+}
+
+/// Every MIP level's pixels of an image file, one after another (as floats).
+std::vector<float> pixels_of_every_level(const std::string& path)
+{
+    std::vector<float> pixels;
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) return pixels;
+    for (int level = 0; input->seek_subimage(0, level); ++level) {
+        const OIIO::ImageSpec& spec = input->spec();
+        const std::size_t start = pixels.size();
+        pixels.resize(start + spec.image_pixels() * spec.nchannels);
+        if (!input->read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data() + start)) return {};
+    }
+    return pixels;
 }
 
 /// Largest |a − b| over channels, relative to the texture's spread (its mean's magnitude + 1).
@@ -196,6 +220,112 @@ TEST_P(ModelConformance, RendersAreTheSameForAnyThreadCountAndRun)
     const Image again = render(*make_texture(example()), settings);
     EXPECT_EQ(one.pixels, two.pixels);
     EXPECT_EQ(two.pixels, again.pixels);
+}
+
+/// Every entry point that spreads work over threads gives the same bits for 1, 2 and many
+/// threads (more than rows, than cores): render (2D filtered and point-sampled, periodic, solid
+/// where the model has it), the MIP levels the plugin serves as tiles (filled in any order from
+/// many threads), `stex bake` and the solid bake at a position map (the files, byte for byte),
+/// and the POV-Ray include's baked image (all cores) against a one-thread render.
+TEST_P(ModelConformance, EveryEntryPointIsTheSameForOneTwoAndManyThreads)
+{
+    const std::vector<int> thread_counts{1, 2, 7};
+    const auto texture = make_texture(example());
+    const auto periodic = make_periodic_texture(example(), {8, 4});
+    for (int variant = 0; variant < 4; ++variant) {
+        if (variant == 3 && !info().capabilities.solid) continue;
+        RenderSettings settings;
+        settings.width = 23, settings.height = 9;  // fewer rows than the 7 threads' bands
+        settings.units_per_pixel = 2.3 * pixel();
+        settings.origin_u = -1.25, settings.origin_v = 0.5;
+        settings.filter = variant != 1;
+        settings.solid = variant == 3;
+        settings.z = 0.4;
+        const Texture& subject = variant == 2 ? *periodic : *texture;
+        std::vector<Image> images;
+        for (int threads : thread_counts) {
+            settings.threads = threads;
+            images.push_back(render(subject, settings));
+        }
+        for (std::size_t i = 1; i < images.size(); ++i)
+            EXPECT_EQ(images[0].pixels, images[i].pixels) << "render variant " << variant << ", " << thread_counts[i] << " threads";
+    }
+
+    // Plugin tiles: every level's 8² tiles, in order on one thread, then backwards from 7.
+    ImageLayout layout;
+    layout.width = 64, layout.height = 40, layout.tile_width = layout.tile_height = 8;  // lrp: periods ≥ 32 pixels
+    const MipImage mip(example(), layout, "conformance");
+    auto tiles = [&](int threads) {
+        std::vector<std::vector<float>> result;
+        std::vector<std::array<int, 3>> jobs;  // level, x0, y0
+        for (int level = 0; level < mip.level_count(); ++level)
+            for (int y = 0; y < mip.level_height(level); y += 8)
+                for (int x = 0; x < mip.level_width(level); x += 8) jobs.push_back({level, x, y});
+        result.resize(jobs.size());
+        std::atomic<int> next{int(jobs.size()) - 1};
+        auto work = [&] {
+            for (int j; (j = next.fetch_sub(1)) >= 0;) {
+                const auto [level, x, y] = jobs[j];
+                const int w = std::min(8, mip.level_width(level) - x), h = std::min(8, mip.level_height(level) - y);
+                result[j].resize(std::size_t(w) * h * mip.channel_count());
+                mip.fill(level, x, y, w, h, result[j].data());
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int t = 0; t < threads; ++t) pool.emplace_back(work);
+        for (auto& thread : pool) thread.join();
+        return result;
+    };
+    const auto sequential = tiles(1);
+    EXPECT_EQ(sequential, tiles(2));
+    EXPECT_EQ(sequential, tiles(7));
+
+    // The bakes: every level's pixels (the headers hold the time of writing).
+    const std::string dir = test::temp_dir("conformance-threads-" + name());
+    const std::string positions = dir + "/positions.exr";
+    {
+        // A sheared ramp of positions, alpha 1 (covered) but for one texel.
+        Image map(12, 10, 4);
+        for (int y = 0; y < map.height; ++y)
+            for (int x = 0; x < map.width; ++x)
+                map.at(x, y, 0) = 0.1f * x, map.at(x, y, 1) = 0.07f * y + 0.02f * x, map.at(x, y, 2) = 0.05f * y,
+                map.at(x, y, 3) = x == 3 && y == 4 ? 0.0f : 1.0f;
+        auto output = OIIO::ImageOutput::create(positions);
+        ASSERT_TRUE(output && output->open(positions, OIIO::ImageSpec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT)) &&
+                    output->write_image(OIIO::TypeDesc::FLOAT, map.pixels.data()) && output->close());
+    }
+    std::vector<std::vector<float>> bakes, solid_bakes;
+    for (int threads : thread_counts) {
+        BakeOptions options;
+        options.width = options.height = 32;
+        options.tile_size = 16;
+        options.threads = threads;
+        const std::string path = dir + "/bake-" + std::to_string(threads) + ".exr";
+        bake_mip_image(example(), path, options);
+        bakes.push_back(pixels_of_every_level(path));
+        const std::string solid_path = dir + "/solid-" + std::to_string(threads) + ".exr";
+        bake_solid_map(example(), positions, solid_path, 0.5, threads);
+        solid_bakes.push_back(pixels_of_every_level(solid_path));
+    }
+    for (std::size_t i = 1; i < bakes.size(); ++i) {
+        EXPECT_FALSE(bakes[0].empty());
+        EXPECT_TRUE(bakes[0] == bakes[i]) << "bake, " << thread_counts[i] << " threads";
+        EXPECT_TRUE(solid_bakes[0] == solid_bakes[i]) << "solid bake, " << thread_counts[i] << " threads";
+    }
+
+    // The POV-Ray include's baked image renders on all cores.
+    pov::PovIncludeOptions pov_options;
+    pov_options.name = "T";
+    pov_options.mode = pov::PovMode::baked;
+    pov_options.image_file_name = "t.exr";
+    pov_options.bake_size = 64;  // lrp's fixed phases need a period of at least 32 exemplar pixels
+    const Image baked = pov::make_pov_include(example(), pov_options).baked_image;
+    const double period = 64 / example().pixels_per_unit;
+    RenderSettings settings;
+    settings.width = settings.height = 64;
+    settings.units_per_pixel = period / 64;
+    settings.threads = 1;
+    EXPECT_EQ(baked.pixels, render(*make_periodic_texture(example(), {period, period}), settings).pixels);
 }
 
 TEST_P(ModelConformance, StexRoundTripIsByteIdentical)

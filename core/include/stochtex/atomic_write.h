@@ -34,6 +34,11 @@ private:
     bool committed_ = false;
 };
 
+/// Checks, before any work, that an output can be created at `path`: its folder exists, is a
+/// folder and is writable, and `path` is not a folder. Throws Error "<path>: cannot write
+/// <what>: …". check_image_output() (image.h) adds the format.
+void check_output_path(const std::string& path, const std::string& what);
+
 /// Writes `text` to `path` through an AtomicOutput. Throws Error naming the file and the reason.
 void write_file_atomically(const std::string& path, const std::string& text);
 

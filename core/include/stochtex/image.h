@@ -44,11 +44,24 @@ struct ImageReadOptions {
 constexpr int max_read_side = 16384;
 constexpr long long max_read_pixels = 1ll << 26;
 
+/// What read_image_linear() found in the file besides its pixels.
+struct ImageFileInfo {
+    int colour_channels = 0;  ///< 1: grey (replicated into RGB), 3: colour
+};
+
 /// Reads any OIIO-readable image as scene-linear RGB (grey is replicated, alpha dropped).
 /// Throws Error naming the file for: missing/unreadable file, a directory, truncated data
 /// (including what the reader only warns about), images smaller than min_size or larger than
-/// max_read_side / max_read_pixels, and non-finite pixel values.
-Image read_image_linear(const std::string& path, const ImageReadOptions& options = {}, int min_size = 16);
+/// max_read_side / max_read_pixels, and non-finite pixel values. `info`, if given, receives
+/// what the file held.
+Image read_image_linear(const std::string& path, const ImageReadOptions& options = {}, int min_size = 16,
+                        ImageFileInfo* info = nullptr);
+
+/// Checks, before any work, that `path` can be written as an image: its extension names a
+/// format OIIO writes (`what` says which kind of output, e.g. "image"), and its folder exists
+/// and is writable. Throws Error "<path>: cannot write <what>: …". Every command that writes
+/// an image calls it first, so that a typo costs nothing of a long render or bake.
+void check_image_output(const std::string& path, const std::string& what = "image");
 
 /// Writes scene-linear RGB: float EXR (and other float formats) stay linear; 8/16-bit formats
 /// (PNG, JPEG, TIFF by extension) are encoded to sRGB. Throws Error on failure.

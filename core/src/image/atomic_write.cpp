@@ -75,6 +75,22 @@ void AtomicOutput::commit()
     committed_ = true;
 }
 
+void check_output_path(const std::string& path, const std::string& what)
+{
+    namespace fs = std::filesystem;
+    const std::string failed = path + ": cannot write " + what + ": ";
+    std::error_code error;
+    if (path.empty()) throw Error("(empty output name): cannot write " + what);
+    if (fs::is_directory(path, error)) throw Error(failed + "it is a folder");
+    // The temporary is created in the output's folder (a rename is atomic only there).
+    const fs::path parent = fs::path(path).parent_path();
+    const fs::path folder = parent.empty() ? fs::path(".") : parent;
+    if (!fs::exists(folder, error)) throw Error(failed + "the folder " + folder.string() + " does not exist");
+    if (!fs::is_directory(folder, error)) throw Error(failed + folder.string() + " is not a folder");
+    if (access(folder.c_str(), W_OK | X_OK) != 0)
+        throw Error(failed + "the folder " + folder.string() + " is not writable (" + std::strerror(errno) + ")");
+}
+
 void write_file_atomically(const std::string& path, const std::string& text)
 {
     AtomicOutput output(path);

@@ -63,7 +63,7 @@ void convert_colour_space(Image& image, const std::string& from, const std::stri
         throw Error("cannot convert colours from '" + from + "' to '" + to + "': " + buffer.geterror());
 }
 
-Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size)
+Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size, ImageFileInfo* info)
 {
     std::error_code ignored;
     if (!std::filesystem::exists(path, ignored)) throw Error(path + ": no such file");
@@ -92,6 +92,7 @@ Image read_image_linear(const std::string& path, const ImageReadOptions& options
     // rows as flat grey and only warns ("Premature end of JPEG file").
     if (input->has_error()) throw Error(path + ": cannot read pixels (truncated or corrupt file?): " + input->geterror());
     input->close();
+    if (info) info->colour_channels = colour_channels >= 3 ? 3 : 1;
 
     Image image(spec.width, spec.height, 3);
     for (std::size_t i = 0; i < image.pixel_count(); ++i)
@@ -147,11 +148,30 @@ void write_pixels_atomically(OIIO::ImageOutput& output, const std::string& path,
     file.commit();
 }
 
+std::unique_ptr<OIIO::ImageOutput> create_image_output(const std::string& path, const std::string& what)
+{
+    // The format is chosen by the final name (the temporary's ".tmp" would choose nothing).
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output) {
+        const std::string extension = std::filesystem::path(path).extension().string();
+        OIIO::geterror();  // consumed: the message below says it better
+        throw Error(path + ": cannot write " + what + ": " +
+                    (extension.empty() ? std::string("no extension to choose a format by (e.g. .exr, .png)")
+                                       : "'" + extension + "' is not an image format OpenImageIO writes (e.g. .exr, .png, .tif)"));
+    }
+    return output;
+}
+
+void check_image_output(const std::string& path, const std::string& what)
+{
+    create_image_output(path, what);
+    check_output_path(path, what);
+}
+
 void write_image(const std::string& path, const Image& linear_rgb)
 {
     if (linear_rgb.empty() || linear_rgb.channels != 3) throw Error(path + ": nothing to write (need an RGB image)");
-    auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
-    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    auto output = create_image_output(path, "image");
     const bool linear = is_float_format(path);
     OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");

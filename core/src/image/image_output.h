@@ -4,9 +4,15 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <memory>
 #include <string>
 
 namespace stochtex {
+
+/// ImageOutput::create(path): the format chosen by the final name. Throws Error "<path>: cannot
+/// write <what>: '<ext>' is not an image format …" (check_image_output() gives the same message
+/// before the work).
+std::unique_ptr<OIIO::ImageOutput> create_image_output(const std::string& path, const std::string& what);
 
 /// Writes `pixels` (spec.nchannels floats a pixel, top row first; stored as spec.format) with
 /// `output`, made by ImageOutput::create(path) so that the final name chooses the format. The

@@ -289,7 +289,8 @@ std::map<std::string, std::string> parse_model_options(const Model& model,
     std::map<std::string, std::string> result;
     for (const AnalysisOption& option : declared) result[option.info.key] = option.canonical(option.info.default_value);
     for (const auto& [key, text] : given) {
-        auto option = std::find_if(declared.begin(), declared.end(), [&](const AnalysisOption& o) { return o.info.key == key; });
+        auto option = std::find_if(declared.begin(), declared.end(),
+                                   [&, &key = key](const AnalysisOption& o) { return o.info.key == key; });
         if (option == declared.end()) {
             std::vector<std::string> keys;
             for (const AnalysisOption& o : declared) keys.push_back(o.info.key);

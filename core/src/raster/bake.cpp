@@ -4,6 +4,8 @@
 #include <stochtex/mip_image.h>
 #include <stochtex/texture.h>
 
+#include "image/image_output.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -54,8 +56,8 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
     layout.channels = "RGB";
     const MipImage image(description, layout, path);  // validates the description and the layout
 
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    auto output = create_image_output(path, "the bake");
+    check_output_path(path, "the bake");
     if (!output->supports("tiles") || !output->supports("mipmap"))
         throw Error(path + ": the " + std::string(output->format_name()) + " format cannot hold a tiled, MIP-mapped image; use .exr");
 
@@ -153,6 +155,9 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
 {
     if (!(units_per_position > 0) || !std::isfinite(units_per_position))
         throw Error("solid bake: the position scale must be positive");
+    // The output is checked before the work (the bake is written at the end).
+    auto output = create_image_output(path, "the solid map");
+    check_output_path(path, "the solid map");
     const auto texture = make_texture(description);
     const PositionMap map = read_positions(positions_path);
     // Positions come from a file: each must lie where a texture can be evaluated (texture.h),
@@ -212,8 +217,6 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     }
     for (auto& worker : pool) worker.join();
 
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
     OIIO::ImageSpec spec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT);
     spec.alpha_channel = 3;
     spec.attribute("oiio:ColorSpace", "Linear");

@@ -49,6 +49,14 @@ struct LightSet {
 /// line) or ".json" ({"lights": [{"image": …, "direction": [x, y, z]}, …]}). Strict: every
 /// problem is an Error naming the file and the line or field (docs/models/ptm.md, "Input").
 LightSet read_light_set(const std::string& path);
+/// The same for sidecar text already in memory: `path` names it in errors, chooses the format by
+/// its extension and is the folder image names resolve against (what read_light_set() calls).
+LightSet parse_light_set(const std::string& text, const std::string& path);
+/// Reads the photos of a light set for fit_ptm(), scene-linear (read_image_linear() with
+/// `options`, each at least min_size a side). They must be all colour or all grey (grey is
+/// replicated into RGB) and of one size: a grey photo among colour ones is a wrong export whose
+/// light would get a wrong chroma, so it is an Error naming both photos, as is a size mismatch.
+std::vector<Image> read_light_set_photos(const LightSet& lights, const ImageReadOptions& options = {}, int min_size = 8);
 /// Writes an .lp file; image paths are written relative to the file's folder where possible.
 void write_light_set(const std::string& path, const LightSet& lights);
 /// `count` directions spread evenly over the hemisphere above `min_elevation_degrees`

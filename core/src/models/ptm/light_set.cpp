@@ -14,6 +14,8 @@
 #include <map>
 #include <sstream>
 
+#include <sys/stat.h>
+
 namespace stochtex {
 
 namespace fs = std::filesystem;
@@ -44,6 +46,18 @@ std::vector<std::string> tokens_of(const std::string& line)
     return {std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
 }
 
+/// What identifies a photo's file however it is spelled ("a.png", "./a.png", "sub/../a.png", a
+/// symbolic or hard link): its device and inode where it exists, else its canonical path.
+std::string file_identity(const std::string& resolved)
+{
+    struct stat status {};
+    if (stat(resolved.c_str(), &status) == 0)
+        return "inode " + std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino);
+    std::error_code ignored;
+    const fs::path canonical = fs::weakly_canonical(resolved, ignored);
+    return canonical.empty() ? resolved : canonical.string();
+}
+
 bool parse_number(const std::string& text, double& value)
 {
     const char* end = text.data() + text.size();
@@ -63,7 +77,7 @@ LightSet read_lp(const std::string& path, const std::string& text)
     };
     long long expected = -1;
     LightSet lights;
-    std::map<std::string, int> first_line_of;
+    std::map<std::string, std::pair<int, std::string>> first_line_of;  // file identity → line, name
     while (std::getline(in, line)) {
         ++line_number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -99,9 +113,12 @@ LightSet read_lp(const std::string& path, const std::string& text)
         } catch (const Error& e) {
             fail(e.what());
         }
-        const auto [previous, inserted] = first_line_of.emplace(name, line_number);
-        if (!inserted) fail("image '" + name + "' is listed twice (first on line " + std::to_string(previous->second) + ")");
-        lights.images.push_back(resolve(name, path));
+        const std::string resolved = resolve(name, path);
+        const auto [previous, inserted] = first_line_of.emplace(file_identity(resolved), std::make_pair(line_number, name));
+        if (!inserted)
+            fail("image '" + name + "' is the same file as '" + previous->second.second + "' on line " +
+                 std::to_string(previous->second.first) + " (each photo once: a photo listed twice is fitted twice)");
+        lights.images.push_back(resolved);
         lights.directions.push_back(direction);
     }
     if (expected < 0) throw Error(path + ": empty light list (expected the number of lights on the first line)");
@@ -121,14 +138,18 @@ LightSet read_json(const std::string& path, const std::string& text)
     if (entries.empty() || entries.size() > std::size_t(max_lights))
         root["lights"].fail("expected 1 … " + std::to_string(max_lights) + " lights, got " + std::to_string(entries.size()));
     LightSet lights;
-    std::map<std::string, std::size_t> first_index_of;
+    std::map<std::string, std::pair<std::size_t, std::string>> first_index_of;  // file identity → index, name
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const Field& entry = entries[i];
         entry.expect_keys({"image", "direction"});
         const std::string image = entry["image"].string();
         if (image.empty()) entry["image"].fail("must not be empty");
-        const auto [previous, inserted] = first_index_of.emplace(image, i);
-        if (!inserted) entry["image"].fail("'" + image + "' is listed twice (first at lights[" + std::to_string(previous->second) + "])");
+        const std::string resolved = resolve(image, path);
+        const auto [previous, inserted] = first_index_of.emplace(file_identity(resolved), std::make_pair(i, image));
+        if (!inserted)
+            entry["image"].fail("'" + image + "' is the same file as '" + previous->second.second + "' at lights[" +
+                                std::to_string(previous->second.first) +
+                                "] (each photo once: a photo listed twice is fitted twice)");
         const Field direction = entry["direction"];
         try {
             lights.directions.push_back(checked_light_direction(direction.numbers<3>(), "direction"));
@@ -138,7 +159,7 @@ LightSet read_json(const std::string& path, const std::string& text)
             if (message.rfind(path, 0) == 0) throw;
             direction.fail(message.substr(message.find(": ") + 2));
         }
-        lights.images.push_back(resolve(image, path));
+        lights.images.push_back(resolved);
     }
     return lights;
 }
@@ -161,14 +182,50 @@ Vec3 checked_light_direction(const Vec3& direction, const std::string& what)
     return {direction[0] / length, direction[1] / length, direction[2] / length};
 }
 
-LightSet read_light_set(const std::string& path)
+namespace {
+
+std::string sidecar_extension(const std::string& path)
 {
     std::string extension = fs::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (extension != ".lp" && extension != ".json")
         throw Error(path + ": unknown light sidecar type '" + extension + "' (expected .lp or .json)");
-    const std::string text = read_text(path);
-    return extension == ".lp" ? read_lp(path, text) : read_json(path, text);
+    return extension;
+}
+
+}  // namespace
+
+LightSet parse_light_set(const std::string& text, const std::string& path)
+{
+    return sidecar_extension(path) == ".lp" ? read_lp(path, text) : read_json(path, text);
+}
+
+LightSet read_light_set(const std::string& path)
+{
+    sidecar_extension(path);  // an unknown type is reported before the file is read
+    return parse_light_set(read_text(path), path);
+}
+
+std::vector<Image> read_light_set_photos(const LightSet& lights, const ImageReadOptions& options, int min_size)
+{
+    std::vector<Image> photos;
+    std::vector<ImageFileInfo> infos(lights.images.size());
+    for (std::size_t i = 0; i < lights.images.size(); ++i) {
+        photos.push_back(read_image_linear(lights.images[i], options, min_size, &infos[i]));
+        const Image& first = photos.front();
+        const std::string& first_name = lights.images.front();
+        const auto kind = [](const ImageFileInfo& info) {
+            return info.colour_channels == 1 ? std::string("grey (1 channel)") : std::string("colour (3 channels)");
+        };
+        if (infos[i].colour_channels != infos[0].colour_channels)
+            throw Error(lights.images[i] + ": the photo is " + kind(infos[i]) + " but " + first_name + " is " +
+                        kind(infos[0]) + ": the photos of one light set must be all colour or all grey");
+        if (photos[i].width != first.width || photos[i].height != first.height)
+            throw Error(lights.images[i] + ": the photo is " + std::to_string(photos[i].width) + "x" +
+                        std::to_string(photos[i].height) + " but " + first_name + " is " + std::to_string(first.width) +
+                        "x" + std::to_string(first.height) + " (one camera, one size)");
+    }
+    return photos;
 }
 
 void write_light_set(const std::string& path, const LightSet& lights)

@@ -83,8 +83,7 @@ void write_ptm_coefficients(const std::string& path, const PtmMaps& maps)
     const std::vector<std::string> names = ptm_channel_names(maps.colour);
     if (maps.coefficients.channels != int(names.size()) || maps.width() < 1)
         throw Error(path + ": cannot write empty maps or maps with a wrong channel count");
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) throw Error(path + ": cannot write OpenEXR: " + OIIO::geterror());
+    auto output = create_image_output(path, "the coefficient maps");
     OIIO::ImageSpec spec(maps.width(), maps.height(), int(names.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames = names;
     spec.alpha_channel = -1;

@@ -88,8 +88,7 @@ SurfaceMaps estimate_surface_maps(const PtmMaps& maps, NormalEstimator estimator
 void write_normal_map(const std::string& path, const Image& normals)
 {
     if (normals.channels != 3 || normals.empty()) throw Error(path + ": a normal map needs 3 channels");
-    auto output = OIIO::ImageOutput::create(path);  // the format is chosen by the final name
-    if (!output) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
+    auto output = create_image_output(path, "the normal map");
     const bool is_float = output->supports("floatpixels") && std::string(output->format_name()) == "openexr";
     OIIO::ImageSpec spec(normals.width, normals.height, 3, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
