@@ -7,9 +7,14 @@
 #   - the Blender scene tests (blender_scene_test) with Blender 4.3.2, which installs the add-on
 #     as an extension (`blender --command extension validate`, package_install_files) and drives
 #     it end to end (analyse, bake, material, Cycles render, compared with the core);
-#   - the add-on's CLI layer (AddonCliLayer) under Python 3.13.
-# The rest of the suite is host-independent maths already run by the Debian 12 lane; building
-# and running it again here would double the test command's time for no new host.
+#   - the add-on's CLI layer (AddonCliLayer) under Python 3.13;
+#   - POV-Ray's scene tests (pov_scene_test, Debian 13's POV-Ray) and the model conformance
+#     suite (model_conformance_test: every model's contracts — filtering, periodic and solid
+#     forms, batches equal to point evaluation, byte-identical round trips — with the core as
+#     g++ 14 compiles it).
+# The rest of the suite is the per-model maths in detail, already run by the Debian 12 lane;
+# building and running all of it again here would cost the test command about as much as the
+# first lane for what the conformance suite already checks of the new compiler.
 #
 # The folder is made once and reused when complete: $STOCHTEX_DEBIAN13_ROOT, default
 # /var/cache/stochtex/debian13 (≈ 1.6 GB; delete it to start over). The source tree and
@@ -28,7 +33,7 @@ fi
 
 # The packages of the lane inside Debian 13: the build (no Google Benchmark: the lane builds no
 # bench/), OIIO's tools and Python bindings for the plugin tests, Blender and xvfb for the scene
-# tests, POV-Ray for parity with the Debian 12 host.
+# tests, POV-Ray for its scene tests.
 packages=(
   build-essential cmake pkg-config
   libopenimageio-dev openimageio-tools python3-openimageio
@@ -38,8 +43,9 @@ packages=(
   blender xvfb xauth povray python3-numpy
 )
 # The build targets and tests of the lane (see the header for why these).
-targets=(stex stex_imageio stochtex_addon plugin_test plugin_stress_test blender_scene_test)
-tests='^(PluginImageInput|PluginTools|PluginTextureSystem|PluginStress|BlenderScene)\.|^AddonCliLayer$'
+targets=(stex stex_imageio stochtex_addon plugin_test plugin_stress_test blender_scene_test pov_scene_test
+         model_conformance_test)
+tests='(^|/)(PluginImageInput|PluginTools|PluginTextureSystem|PluginStress|BlenderScene|PovScene|PovCli|ModelConformance|ModelRegistry)\.|^AddonCliLayer$'
 
 if [ "${1:-}" = "--inside" ]; then
   # ---- inside the Debian 13 folder (chroot): build and test ----
@@ -76,6 +82,7 @@ unmount_all() {
   mounts=()
 }
 trap unmount_all EXIT
+trap 'exit 130' INT; trap 'exit 143' TERM  # a signal becomes an exit, so the mounts still go
 mount_in() {  # mount_in TARGET MOUNT-ARGUMENTS…
   local target=$1; shift
   mkdir -p "$target"
