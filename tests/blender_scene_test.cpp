@@ -1,7 +1,7 @@
 // Blender scene tests (CTest label "scene"; docs/blender.md): Debian's Blender, headless, installs
 // and enables the add-on from the built zip (Blender 3.4, Debian 12: the legacy add-on path;
-// Blender 4.2+, Debian 13 in scripts/debian13-lane.sh: as an extension), analyses the committed exemplar with the add-on's
-// operator, builds the material, renders with Cycles (CPU, few samples, fixed seed, no denoiser),
+// Blender 4.2+, Debian 13 in scripts/debian13-lane.sh: as an extension), analyses the committed
+// exemplar with the add-on's operator, builds the material, renders with Cycles (CPU, few samples, fixed seed, no denoiser),
 // and the render is compared with the core's own render of the same texture and region.
 // Skips when `blender` is not on PATH (scripts/install-deps.sh --with-blender installs it).
 #include "test_support.h"
@@ -40,9 +40,9 @@ std::pair<int, int> blender_version()
 }
 
 /// The environment of a Blender run: its own user-scripts and user-extensions folders (the
-/// add-on is installed there, not in the user's profile), the built stex, and its own temporary folder — the checks
-/// count the add-on's temporary folders, so tests running at the same time must not see each
-/// other's.
+/// add-on is installed there, not in the user's profile), the built stex, and its own temporary
+/// folder — the checks count the add-on's temporary folders, so tests running at the same time
+/// must not see each other's.
 std::string blender_environment(const std::string& out)
 {
     std::filesystem::create_directories(out + "/tmp");
