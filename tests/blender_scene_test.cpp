@@ -1,8 +1,9 @@
 // Blender scene tests (CTest label "scene"; docs/blender.md): Debian's Blender, headless, installs
 // and enables the add-on from the built zip (Blender 3.4, Debian 12: the legacy add-on path;
 // Blender 4.2+, Debian 13 in scripts/debian13-lane.sh: as an extension), analyses the committed
-// exemplar with the add-on's operator, builds the material, renders with Cycles (CPU, few samples, fixed seed, no denoiser),
-// and the render is compared with the core's own render of the same texture and region.
+// exemplar with the add-on's operator, builds the material, renders with Cycles (CPU, few
+// samples, fixed seed, no denoiser), and the render is compared with the core's own render of
+// the same texture and region.
 // Skips when `blender` is not on PATH (scripts/install-deps.sh --with-blender installs it).
 #include "test_support.h"
 
