@@ -10,5 +10,5 @@ cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 # Debian 13 lane (issue 15): the plugin against OIIO 2.5 and the Blender scene tests with Blender
 # 4.3 installing the add-on as an extension, in a debootstrap folder (scripts/debian13-lane.sh;
-# ≈ 9 min from nothing on 2 idle cores, ≈ 3 min when the folder is reused; README). STOCHTEX_SKIP_DEBIAN13=1 skips it.
+# ≈ 8–9 min from nothing on 2 idle cores, ≈ 2 min when the folder is reused; README). STOCHTEX_SKIP_DEBIAN13=1 skips it.
 bash scripts/debian13-lane.sh
