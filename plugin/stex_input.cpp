@@ -29,7 +29,12 @@
 
 OIIO_PLUGIN_NAMESPACE_BEGIN
 
-static_assert(OIIO_PLUGIN_VERSION >= 22, "stex.imageio needs the OIIO 2.x plugin ABI");
+// The plugin ABI is whatever the OIIO it is compiled against declares (stex_imageio_version
+// below): 25 for OIIO 2.4 and 2.5, 26 for 3.0, 27 for 3.1+. The source uses only the ImageInput
+// interface that 2.x and 3.x share (open with a config, spec(subimage, miplevel),
+// read_native_tile/scanline), none of what 3.0 removed (the virtual read_image(TypeDesc…)
+// overloads); docs/oiio-plugin.md says how to build it for the OIIO a host bundles.
+static_assert(OIIO_PLUGIN_VERSION >= 22, "stex.imageio needs OIIO 2.0 or later");
 
 namespace {
 

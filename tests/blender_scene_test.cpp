@@ -1,7 +1,9 @@
 // Blender scene tests (CTest label "scene"; docs/blender.md): Debian's Blender, headless, installs
-// and enables the add-on from the built zip, analyses the committed exemplar with the add-on's
-// operator, builds the material, renders with Cycles (CPU, few samples, fixed seed, no denoiser),
-// and the render is compared with the core's own render of the same texture and region.
+// and enables the add-on from the built zip (Blender 3.4, Debian 12: the legacy add-on path;
+// Blender 4.2+, Debian 13 in scripts/debian13-lane.sh: as an extension), analyses the committed
+// exemplar with the add-on's operator, builds the material, renders with Cycles (CPU, few
+// samples, fixed seed, no denoiser), and the render is compared with the core's own render of
+// the same texture and region.
 // Skips when `blender` is not on PATH (scripts/install-deps.sh --with-blender installs it).
 #include "test_support.h"
 
@@ -19,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 namespace fs = std::filesystem;
 using namespace stochtex;
@@ -27,14 +30,25 @@ namespace {
 
 bool have_blender() { return test::on_path("blender"); }
 
-/// The environment of a Blender run: its own user-scripts folder (the add-on is installed
-/// there, not in the user's profile), the built stex, and its own temporary folder — the checks
-/// count the add-on's temporary folders, so tests running at the same time must not see each
-/// other's.
+/// The Blender on PATH as (major, minor), from `blender --version`'s first line ("Blender 4.3.2").
+std::pair<int, int> blender_version()
+{
+    const auto result = test::run_command("blender --version");
+    int major = 0, minor = 0;
+    const auto at = result.output.find("Blender ");
+    if (at != std::string::npos) std::sscanf(result.output.c_str() + at, "Blender %d.%d", &major, &minor);
+    return {major, minor};
+}
+
+/// The environment of a Blender run: its own user-scripts and user-extensions folders (the
+/// add-on is installed there, not in the user's profile), the built stex, and its own temporary
+/// folder — the checks count the add-on's temporary folders, so tests running at the same time
+/// must not see each other's.
 std::string blender_environment(const std::string& out)
 {
     std::filesystem::create_directories(out + "/tmp");
-    return "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") + " TMPDIR=" + test::shell_quote(out + "/tmp") +
+    return "env BLENDER_USER_SCRIPTS=" + test::shell_quote(out + "/user-scripts") +
+           " BLENDER_USER_EXTENSIONS=" + test::shell_quote(out + "/user-extensions") + " TMPDIR=" + test::shell_quote(out + "/tmp") +
            " STOCHTEX_STEX=" + test::shell_quote(STOCHTEX_CLI);
 }
 
@@ -70,6 +84,22 @@ double rms_difference_over_sigma(const Image& a, const Image& b)
 // only approximations of the coarse bands: make_periodic_texture, docs/oiio-plugin.md).
 constexpr int plane_size = 512, bake_size = 2048;
 
+// Blender 4.2+ reads the zip as an extension: its own validator must accept the manifest
+// (the scene scripts then install it with package_install_files, stochtex_scene.py).
+TEST(BlenderScene, ExtensionManifestValidates)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const auto [major, minor] = blender_version();
+    if (major * 100 + minor < 402) GTEST_SKIP() << "Blender " << major << "." << minor << " has no extensions (4.2+)";
+    const std::string out = test::temp_dir("blender-validate");
+    const auto result = test::run_command(blender_environment(out) + " timeout 120 blender --command extension validate " +
+                                          test::shell_quote(STOCHTEX_ADDON_ZIP));
+    EXPECT_EQ(result.status, 0) << result.output;
+    EXPECT_NE(result.output.find("Success"), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find("Error"), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find("Warning"), std::string::npos) << result.output;
+}
+
 TEST(BlenderScene, MeasurementPlaneMatchesCore)
 {
     if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
@@ -77,6 +107,8 @@ TEST(BlenderScene, MeasurementPlaneMatchesCore)
     const auto result = run_blender("measure_plane.py", out, "--size " + std::to_string(plane_size) + " --bake-size " + std::to_string(bake_size) + " --samples 16");
     ASSERT_EQ(result.status, 0) << result.output;
     const auto report = read_json(out + "/plane.json");
+    const auto [major, minor] = blender_version();
+    std::printf("Blender %d.%d: ", major, minor);
     std::printf("analyse + bake %.2f s, Cycles render %dx%d at 16 samples %.2f s\n",
                 report["analyse_and_bake_seconds"].get<double>(), plane_size, plane_size,
                 report["render_seconds"].get<double>());

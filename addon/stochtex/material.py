@@ -14,6 +14,17 @@ def _new_socket(group, name, in_out, socket_type):
     return sockets.new(socket_type, name)
 
 
+def ensure_nodes(material):
+    """Makes `material` a node material. Blender 5.0 deprecated Material.use_nodes (every
+    material has nodes), so it is only set where it still means something."""
+    if bpy.app.version < (5, 0, 0):
+        material.use_nodes = True
+
+
+def uses_nodes(material):
+    return bpy.app.version >= (5, 0, 0) or material.use_nodes
+
+
 def set_linear(image):
     """Scene-linear Rec.709, the .stex colour space, under either Blender's name for it."""
     for name in ("Linear Rec.709", "Linear"):
@@ -85,7 +96,7 @@ def build_material(material, settings, name, image=None, period_m=1.0, osl_text=
     Everything else in the material is left alone, except nodes this add-on made before
     (named "stochtex ..."), which are replaced.
     """
-    material.use_nodes = True
+    ensure_nodes(material)
     nodes, links = material.node_tree.nodes, material.node_tree.links
     for node in [n for n in nodes if n.name.startswith("stochtex")]:
         nodes.remove(node)
@@ -142,8 +153,8 @@ def bake_positions(context, obj, mat, size, path):
     image.colorspace_settings.is_data = True
     # Opaque: Blender keeps float images premultiplied, so alpha 0 would zero the positions.
     image.generated_color = (0.0, 0.0, 0.0, 1.0)
-    used_nodes = mat.use_nodes
-    mat.use_nodes = True
+    used_nodes = uses_nodes(mat)
+    ensure_nodes(mat)
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     outputs = [n for n in nodes if n.type == "OUTPUT_MATERIAL"]
     active_output = next((n for n in outputs if n.is_active_output), None)
@@ -183,5 +194,6 @@ def bake_positions(context, obj, mat, size, path):
         for o in selection:
             o.select_set(True)
         scene.render.engine, scene.cycles.samples, scene.render.bake.margin, scene.cycles.use_denoising = saved
-        mat.use_nodes = used_nodes
+        if not used_nodes:
+            mat.use_nodes = False
         bpy.data.images.remove(image)

@@ -55,7 +55,7 @@ def _photo_path(image, work):
 
 
 def _active_image_node_image(mat):
-    if mat is None or not mat.use_nodes:
+    if mat is None or not material.uses_nodes(mat):
         return None
     node = mat.node_tree.nodes.active
     return node.image if node is not None and node.type == "TEX_IMAGE" else None

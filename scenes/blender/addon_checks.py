@@ -6,6 +6,7 @@ Writes OUT/checks.json: one entry per check, {"ok": bool, "detail": str}.
 """
 
 import glob
+import importlib
 import os
 import sys
 import tempfile
@@ -18,7 +19,7 @@ import stochtex_scene as s  # noqa: E402
 
 args = s.arguments(__doc__)
 os.makedirs(args.out, exist_ok=True)
-s.install_addon(args.addon)
+module = s.install_addon(args.addon)  # stochtex (3.4, legacy) or bl_ext.user_default.stochtex (4.2+)
 scene = s.empty_scene()
 bpy.ops.mesh.primitive_plane_add(size=2.0)
 plane = bpy.context.active_object
@@ -64,9 +65,16 @@ expect_report("image data-block with a missing file", "file not found", lambda: 
 mat.stochtex.image = None
 bpy.data.images.remove(ghost)
 
+# The preferences live under the add-on's own module name (__package__): a stex path set there
+# is the one the operator runs.
+preferences = bpy.context.preferences.addons[module].preferences
+preferences.stex_path = "/nonexistent/stex"
+expect_report("stex path from the preferences", "/nonexistent/stex", lambda: bpy.ops.stochtex.analyze(filepath=args.photo))
+preferences.stex_path = ""
+
 # A bake cancelled half-way (what Esc does in the modal operator): the job is killed, and the
 # operator's temporary folder is removed with the partial map in it.
-from stochtex import stex_cli  # noqa: E402  (the installed add-on's own module)
+stex_cli = importlib.import_module(module + ".stex_cli")  # the installed add-on's own module
 work = stex_cli.WorkDir()
 stex = stex_cli.find_stex()
 stex_cli.run(stex, stex_cli.analyze_args(args.photo, work.file("t.stex"), "wavelet"))

@@ -25,9 +25,24 @@ def arguments(description, extra=None):
 
 
 def install_addon(zip_path):
-    """Installs and enables the add-on from its zip, as a user would (Preferences > Add-ons > Install)."""
-    bpy.ops.preferences.addon_install(filepath=os.path.abspath(zip_path), overwrite=True)
-    bpy.ops.preferences.addon_enable(module="stochtex")
+    """Installs and enables the add-on from its zip, as a user would, and returns its module name.
+
+    Blender 4.2+ installs it as an extension (Preferences > Get Extensions > Install from Disk:
+    the manifest is validated, the module is bl_ext.user_default.stochtex); older Blenders use
+    the legacy path (Preferences > Add-ons > Install, module stochtex, bl_info)."""
+    zip_path = os.path.abspath(zip_path)
+    if bpy.app.version >= (4, 2, 0):
+        result = bpy.ops.extensions.package_install_files(filepath=zip_path, repo="user_default",
+                                                          enable_on_install=True)
+        module = "bl_ext.user_default.stochtex"
+    else:
+        bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
+        result = bpy.ops.preferences.addon_enable(module="stochtex")
+        module = "stochtex"
+    if result != {"FINISHED"} or module not in bpy.context.preferences.addons:
+        raise RuntimeError("installing the add-on from %s failed (%s)" % (zip_path, result))
+    print("stochtex add-on enabled as %s in Blender %s" % (module, bpy.app.version_string))
+    return module
 
 
 def default_cube_material():
@@ -42,7 +57,8 @@ def empty_scene():
         bpy.data.objects.remove(obj, do_unlink=True)
     scene = bpy.context.scene
     world = bpy.data.worlds.new("black")
-    world.use_nodes = True
+    if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: every world has nodes
+        world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     scene.world = world
     return scene
