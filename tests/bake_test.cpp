@@ -154,7 +154,7 @@ TEST(Bake, CliBakeAndOsl)
     const std::string dir = test::temp_dir("bake-cli");
     const std::string stex = test::shell_quote(STOCHTEX_CLI);
     auto result = test::run_command(stex + " analyze " + test::shell_quote(test::repo_exemplar("concrete_512.png")) + " -o " +
-                                    dir + "/t.stex");
+                                    dir + "/t.stex --model wavelet");
     ASSERT_EQ(result.status, 0) << result.output;
     result = test::run_command(stex + " --progress-lines bake " + dir + "/t.stex -o " + dir + "/t.exr --size 128 --half");
     ASSERT_EQ(result.status, 0) << result.output;

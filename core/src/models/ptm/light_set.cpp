@@ -116,8 +116,11 @@ LightSet read_lp(const std::string& path, const std::string& text)
         const std::string resolved = resolve(name, path);
         const auto [previous, inserted] = first_line_of.emplace(file_identity(resolved), std::make_pair(line_number, name));
         if (!inserted)
-            fail("image '" + name + "' is the same file as '" + previous->second.second + "' on line " +
-                 std::to_string(previous->second.first) + " (each photo once: a photo listed twice is fitted twice)");
+            fail("image '" + name + "' is " +
+                 (name == previous->second.second
+                      ? "listed twice (first on line " + std::to_string(previous->second.first) + ")"
+                      : "the same file as '" + previous->second.second + "' on line " + std::to_string(previous->second.first)) +
+                 " (each photo once: a photo listed twice is fitted twice)");
         lights.images.push_back(resolved);
         lights.directions.push_back(direction);
     }
@@ -147,9 +150,12 @@ LightSet read_json(const std::string& path, const std::string& text)
         const std::string resolved = resolve(image, path);
         const auto [previous, inserted] = first_index_of.emplace(file_identity(resolved), std::make_pair(i, image));
         if (!inserted)
-            entry["image"].fail("'" + image + "' is the same file as '" + previous->second.second + "' at lights[" +
-                                std::to_string(previous->second.first) +
-                                "] (each photo once: a photo listed twice is fitted twice)");
+            entry["image"].fail("'" + image + "' is " +
+                                (image == previous->second.second
+                                     ? "listed twice (first at lights[" + std::to_string(previous->second.first) + "])"
+                                     : "the same file as '" + previous->second.second + "' at lights[" +
+                                           std::to_string(previous->second.first) + "]") +
+                                " (each photo once: a photo listed twice is fitted twice)");
         const Field direction = entry["direction"];
         try {
             lights.directions.push_back(checked_light_direction(direction.numbers<3>(), "direction"));
