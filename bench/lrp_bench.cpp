@@ -29,6 +29,7 @@
 #include <benchmark/benchmark.h>
 
 #include "median_reporter.h"
+#include "photo_crop.h"
 
 #include <chrono>
 #include <cmath>
@@ -46,14 +47,6 @@ using namespace stochtex;
 
 constexpr int raster_size = 512;
 
-Image top_left(const Image& image, int size)
-{
-    Image out(size, size, 3);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x)
-            for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, c);
-    return out;
-}
 
 Image load_photo(std::string& source)
 {
@@ -218,8 +211,8 @@ int main(int argc, char** argv)
     static std::vector<Model> models;
     try {
         photo = load_photo(source);
-        crop256 = top_left(photo, 256);
-        crop512 = top_left(photo, 512);
+        crop256 = stochtex::bench::top_left_crop(photo, 256);
+        crop512 = stochtex::bench::top_left_crop(photo, 512);
         models.push_back(make_model(crop512, "lrp", 50, 4, 0));
         models.push_back(make_model(crop512, "lrp", 50, 8, 0.1));
         models.push_back(make_model(crop512, "wavelet", 0, 0, 0));

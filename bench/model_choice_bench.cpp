@@ -14,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "median_reporter.h"
+#include "photo_crop.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -27,14 +28,6 @@ using namespace stochtex;
 
 constexpr int photo_size = 512;
 
-Image top_left(const Image& image, int size)
-{
-    Image out(size, size, 3);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x)
-            for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, c);
-    return out;
-}
 
 void bm_analyze(benchmark::State& state, const Image* photo, std::string model)
 {
@@ -83,7 +76,7 @@ int main(int argc, char** argv)
         const fs::path path =
             fs::exists(shared) ? shared : fs::path(STOCHTEX_SOURCE_DIR) / "data" / "exemplars" / "concrete_512.png";
         source = path.filename().string();
-        photo = top_left(read_image_linear(path.string()), photo_size);
+        photo = stochtex::bench::top_left_crop(read_image_linear(path.string()), photo_size);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "model_choice_bench: setup failed: %s\n", e.what());
         return 1;

@@ -27,6 +27,7 @@
 #include <benchmark/benchmark.h>
 
 #include "median_reporter.h"
+#include "photo_crop.h"
 
 #ifdef STOCHTEX_HAVE_LIBNOISE
 #include <libnoise/noise.h>
@@ -56,15 +57,6 @@ constexpr int raster_size = 512;    // every synthesis benchmark fills a 512×51
 // ---------------------------------------------------------------------------------------------
 // The exemplar: top-left 512² of dirt.png, else a project exemplar, else synthetic noise.
 
-Image crop_top_left(const Image& image, int size)
-{
-    const int w = std::min(size, image.width), h = std::min(size, image.height);
-    Image out(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, c);
-    return out;
-}
 
 // Deterministic coloured noise with structure at several scales (used only without exemplars).
 Image synthetic_exemplar(int size)
@@ -112,7 +104,7 @@ Exemplar load_exemplar()
     for (const fs::path& path : candidates) {
         if (!fs::is_regular_file(path, error)) continue;
         try {
-            Image cropped = crop_top_left(stochtex::read_image_linear(path.string()), exemplar_size);
+            Image cropped = stochtex::bench::top_left_crop(stochtex::read_image_linear(path.string()), exemplar_size);
             return {std::move(cropped), path.filename().string()};
         } catch (const std::exception& e) {
             std::fprintf(stderr, "wavelet_bench: cannot use %s (%s)\n", path.string().c_str(), e.what());

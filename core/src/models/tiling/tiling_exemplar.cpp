@@ -113,10 +113,7 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
                                  CropOrigin origin)
 {
     if (origin.x < 0) origin = {(width - crop_width) / 2, (height - crop_height) / 2};
-    const int x0 = origin.x, y0 = origin.y;
-    std::vector<float> crop(std::size_t(crop_width) * crop_height);
-    for (int y = 0; y < crop_height; ++y)
-        std::copy_n(&plane[std::size_t(y0 + y) * width + x0], crop_width, &crop[std::size_t(y) * crop_width]);
+    const std::vector<float> crop = region(plane, width, origin.x, origin.y, crop_width, crop_height);
     // The inverse transform is unnormalised: divide by the pixel count.
     std::vector<float> periodic = real_inverse_fft_2d(periodic_component_fft_2d(crop, crop_width, crop_height), crop_width, crop_height);
     const float scale = 1.0f / (float(crop_width) * float(crop_height));
