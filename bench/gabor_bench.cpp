@@ -213,11 +213,17 @@ void bm_render(benchmark::State& state, const Model* model, bool solid, int thre
     settings.solid = solid;
     settings.z = 0.375;
     settings.threads = threads;
+    timespec start{}, end{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &start);
     for (auto _ : state) {
         Image image = render(*model->texture, settings);
         benchmark::DoNotOptimize(image.pixels.data());
     }
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &end);
     set_rate(state, "Mpix/s", double(grid) * grid);
+    // All threads' CPU time (the process's: nothing else runs during the benchmark).
+    const double cpu_ns = double(end.tv_sec - start.tv_sec) * 1e9 + double(end.tv_nsec - start.tv_nsec);
+    set_cpu_per_item(state, "CPU_ns/pix", cpu_ns, double(grid) * grid);
     const auto& d = model->description;
     const std::size_t octaves = d.parameters.holds<GaborParameters>() ? d.parameters.get<GaborParameters>().frequencies.size() : d.parameters.get<WaveletParameters>().band_weights[0].size();
     state.SetLabel(d.model + (solid ? " solid" : " 2D") + ", " + std::to_string(octaves) + (d.parameters.holds<GaborParameters>() ? " octaves" : " bands") +

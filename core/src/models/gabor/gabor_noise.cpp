@@ -336,13 +336,26 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
 
     // One impulse of cell (i, j[, k]) into the cache, prepared for this filter (and frame).
     gabor_raster::CellImpulses& cells = grid_scratch().cells;
+    // A single point (eval(), eval_sliced()) keeps only the cells whose kernel can reach it: q in
+    // double with the span's margin, a superset of what the kernel's float test keeps, so the
+    // sum is the same as in any grid.
+    const bool single = nx == 1 && ny == 1;
     auto push_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
         const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
-        const std::uint64_t bits = mix64(key), attributes = mix64(key + attribute_offset);
+        const std::uint64_t bits = mix64(key);
+        const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
+        const double cz = Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0;
+        if (single) {
+            const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
+            const double q = Solid ? dot3(n, d) * dot3(n, d) + inverse.quadratic_form(dot3(t, d), dot3(b, d))
+                                   : inverse.quadratic_form(d[0], d[1]);
+            if (!(q <= reach2)) return;
+        }
+        const std::uint64_t attributes = mix64(key + attribute_offset);
         const Vec3 omega = fixed ? omega_ : frequency_of(attributes);
-        cells.x.push_back(i * sx + position_fraction(bits) * sx);
-        cells.y.push_back(j * sy + position_fraction(bits >> 21) * sy);
-        cells.z.push_back(Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0);
+        cells.x.push_back(cx);
+        cells.y.push_back(cy);
+        cells.z.push_back(cz);
         // In-plane frequency ω^s (2D: the projected one), filtered: A⁻¹ω^s (eq. 10).
         const double st = Solid ? dot3(t, omega) : omega[0], sb = Solid ? dot3(b, omega) : omega[1];
         const double wx = inverse.xx * st + inverse.xy * sb, wy = inverse.xy * st + inverse.yy * sb;
@@ -382,13 +395,26 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                     const std::int64_t i0 = floor_index((x_lo + span.lo) / sx), i1 = floor_index((x_hi + span.hi) / sx);
                     gabor_raster::CellRow row;
                     row.first = std::uint32_t(cells.size());
-                    row.count = std::uint32_t(i1 - i0 + 1);
-                    row.i_first = i0;
                     for (std::int64_t i = i0; i <= i1; ++i) push_cell(i, j, k);
+                    row.count = std::uint32_t(cells.size() - row.first);
+                    row.i_first = i0;
+                    if (single) continue;  // one list, below
                     scratch.block_rows.push_back(row);
                     scratch.row_j.push_back(j), scratch.row_k.push_back(k);
                 }
             input.cells = &cells;
+            if (single) {
+                gabor_raster::CellRow every;
+                every.count = std::uint32_t(cells.size());
+                every.every_cell = true;
+                input.rows = &every;
+                input.row_count = 1;
+                input.y = y[0];
+                float* row_out[max_channels] = {};
+                for (int c = 0; c < parameters_.channels; ++c) row_out[c] = out[c];
+                gabor_raster::sum_row(input, x, 1, row_out);
+                return;
+            }
             for (std::size_t py = by; py < by + rows_here; ++py) {
                 // This row of points' spans (narrower than the block's: fewer cells per vector).
                 scratch.rows.clear();

@@ -66,6 +66,12 @@ HWY_INLINE void FastSinCosTurns(DF df, V turns, V& sine, V& cosine)
     cosine = hn::BitCast(df, cosine_bits);
 }
 
+template <class DF>
+struct KernelAt {
+    hn::Vec<DF> q, turns;
+    hn::Mask<DF> keep;
+};
+
 template <bool Solid, int Channels>
 void SumRowOf(const RowInput& in, const double* x, std::size_t count, float* const out[3])
 {
@@ -73,6 +79,10 @@ void SumRowOf(const RowInput& in, const double* x, std::size_t count, float* con
     // precision far from the origin), the kernel itself in float on as many lanes.
     const hn::ScalableTag<double> dd;
     const hn::Rebind<float, decltype(dd)> df;
+#if HWY_TARGET != HWY_SCALAR
+    const hn::Twice<decltype(df)> df2;
+#endif
+    using Kernel = KernelAt<decltype(df)>;
     const std::size_t lanes = hn::Lanes(dd);
     const CellImpulses& cells = *in.cells;
     const Envelope& envelope = in.envelope;
@@ -89,47 +99,79 @@ void SumRowOf(const RowInput& in, const double* x, std::size_t count, float* con
         const double x_min = *std::min_element(lane_x, lane_x + n), x_max = *std::max_element(lane_x, lane_x + n);
         const auto px = hn::Load(dd, lane_x);
         auto sum0 = hn::Zero(dd), sum1 = hn::Zero(dd), sum2 = hn::Zero(dd);
-
+        // Cell m's q, turns and support mask at the lanes' points.
+        auto kernel = [&](std::size_t m) {
+            Kernel k;
+            const auto dx = hn::DemoteTo(df, hn::Sub(px, hn::Set(dd, cells.x[m])));
+            const float dy = float(in.y - cells.y[m]);
+            // q and the turns: the lane's x part plus the cell's (y, z) part.
+            if constexpr (Solid) {
+                const float dz = float(in.z - cells.z[m]);
+                const auto u0 = hn::Add(hn::Mul(e0x, dx), hn::Set(df, envelope.e[0][1] * dy + envelope.e[0][2] * dz));
+                const auto u1 = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy + envelope.e[1][2] * dz));
+                const auto u2 = hn::Add(hn::Mul(e2x, dx), hn::Set(df, envelope.e[2][1] * dy + envelope.e[2][2] * dz));
+                k.q = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
+                k.turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy + cells.wz[m] * dz));
+            } else {
+                const auto u = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy));
+                const float v = envelope.e[2][1] * dy;
+                k.q = hn::Add(hn::Mul(u, u), hn::Set(df, v * v));
+                k.turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy));
+            }
+            k.keep = hn::Le(k.q, limit);
+            return k;
+        };
+        // Cell m's kernel added to the sums, from its envelope (zero where the lane is outside
+        // the support) and sin/cos.
+        auto add = [&](std::size_t m, const Kernel& k, hn::Vec<decltype(df)> envelope_value, hn::Vec<decltype(df)> s,
+                       hn::Vec<decltype(df)> c) {
+            envelope_value = hn::IfThenElseZero(k.keep, envelope_value);
+            // cos(2πT + φ) = cos 2πT cos φ − sin 2πT sin φ: one sin/cos for every channel.
+            const auto es = hn::Mul(envelope_value, s), ec = hn::Mul(envelope_value, c);
+            sum0 = hn::Add(sum0, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[0][m])),
+                                                           hn::Mul(es, hn::Set(df, cells.sin_phase[0][m])))));
+            if constexpr (Channels == 3) {
+                sum1 = hn::Add(sum1, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[1][m])),
+                                                               hn::Mul(es, hn::Set(df, cells.sin_phase[1][m])))));
+                sum2 = hn::Add(sum2, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[2][m])),
+                                                               hn::Mul(es, hn::Set(df, cells.sin_phase[2][m])))));
+            }
+        };
+        auto exponent_of = [&](std::size_t m, const Kernel& k) {
+            return hn::Max(hn::Sub(hn::Set(df, cells.log_amplitude[m]), k.q), exp_floor);
+        };
         for (std::size_t r = 0; r < in.row_count; ++r) {
             const CellRow& row = in.rows[r];
-            const std::int64_t first = std::max<std::int64_t>(std::int64_t(std::floor((x_min + row.lo) * inverse_cell)) - row.i_first, 0);
-            const std::int64_t last = std::min<std::int64_t>(std::int64_t(std::floor((x_max + row.hi) * inverse_cell)) - row.i_first,
-                                                             std::int64_t(row.count) - 1);
-            for (std::int64_t i = first; i <= last; ++i) {
+            const std::int64_t first = row.every_cell ? 0 : std::max<std::int64_t>(std::int64_t(std::floor((x_min + row.lo) * inverse_cell)) - row.i_first, 0);
+            const std::int64_t last = row.every_cell ? std::int64_t(row.count) - 1
+                                                     : std::min<std::int64_t>(std::int64_t(std::floor((x_max + row.hi) * inverse_cell)) - row.i_first,
+                                                                              std::int64_t(row.count) - 1);
+            // Two cells at a time: their kernels are independent chains of arithmetic that the
+            // core overlaps; their values still enter the sums one after the other, in order.
+            for (std::int64_t i = first; i <= last; i += 2) {
                 const std::size_t m = row.first + std::size_t(i);
-                const auto dx = hn::DemoteTo(df, hn::Sub(px, hn::Set(dd, cells.x[m])));
-                const float dy = float(in.y - cells.y[m]);
-                // q and the turns: the lane's x part plus the cell's (y, z) part.
-                hn::Vec<decltype(df)> q, turns;
-                if constexpr (Solid) {
-                    const float dz = float(in.z - cells.z[m]);
-                    const auto u0 = hn::Add(hn::Mul(e0x, dx), hn::Set(df, envelope.e[0][1] * dy + envelope.e[0][2] * dz));
-                    const auto u1 = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy + envelope.e[1][2] * dz));
-                    const auto u2 = hn::Add(hn::Mul(e2x, dx), hn::Set(df, envelope.e[2][1] * dy + envelope.e[2][2] * dz));
-                    q = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
-                    turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy + cells.wz[m] * dz));
-                } else {
-                    const auto u = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy));
-                    const float v = envelope.e[2][1] * dy;
-                    q = hn::Add(hn::Mul(u, u), hn::Set(df, v * v));
-                    turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy));
+                const bool pair = i + 1 <= last;
+                Kernel k0 = kernel(m), k1 = pair ? kernel(m + 1) : k0;
+                const bool any0 = !hn::AllFalse(df, k0.keep), any1 = pair && !hn::AllFalse(df, k1.keep);
+                if (!any0 && !any1) continue;
+#if HWY_TARGET == HWY_SCALAR
+                // One lane: no wider vector to pair the cells in.
+                for (int half = 0; half < 2; ++half) {
+                    if (!(half ? any1 : any0)) continue;
+                    const Kernel& k = half ? k1 : k0;
+                    hn::Vec<decltype(df)> s, c;
+                    FastSinCosTurns(df, k.turns, s, c);
+                    add(m + std::size_t(half), k, FastExp(df, exponent_of(m + std::size_t(half), k)), s, c);
                 }
-                const auto keep = hn::Le(q, limit);
-                if (hn::AllFalse(df, keep)) continue;
-                const auto exponent = hn::Max(hn::Sub(hn::Set(df, cells.log_amplitude[m]), q), exp_floor);
-                const auto envelope_value = hn::IfThenElseZero(keep, FastExp(df, exponent));
-                hn::Vec<decltype(df)> s, c;
-                FastSinCosTurns(df, turns, s, c);
-                // cos(2πT + φ) = cos 2πT cos φ − sin 2πT sin φ: one sin/cos for every channel.
-                const auto es = hn::Mul(envelope_value, s), ec = hn::Mul(envelope_value, c);
-                sum0 = hn::Add(sum0, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[0][m])),
-                                                               hn::Mul(es, hn::Set(df, cells.sin_phase[0][m])))));
-                if constexpr (Channels == 3) {
-                    sum1 = hn::Add(sum1, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[1][m])),
-                                                                   hn::Mul(es, hn::Set(df, cells.sin_phase[1][m])))));
-                    sum2 = hn::Add(sum2, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[2][m])),
-                                                                   hn::Mul(es, hn::Set(df, cells.sin_phase[2][m])))));
-                }
+#else
+                // The two cells' exp and sin/cos on one vector of twice the lanes (half the
+                // instructions: the polynomials' latency is what bounds this loop).
+                const auto envelope_values = FastExp(df2, hn::Combine(df2, exponent_of(m + pair, k1), exponent_of(m, k0)));
+                hn::Vec<decltype(df2)> s, c;
+                FastSinCosTurns(df2, hn::Combine(df2, k1.turns, k0.turns), s, c);
+                if (any0) add(m, k0, hn::LowerHalf(df, envelope_values), hn::LowerHalf(df, s), hn::LowerHalf(df, c));
+                if (any1) add(m + 1, k1, hn::UpperHalf(df, envelope_values), hn::UpperHalf(df, s), hn::UpperHalf(df, c));
+#endif
             }
         }
         const auto gain = hn::Set(dd, in.gain);

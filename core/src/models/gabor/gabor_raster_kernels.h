@@ -39,6 +39,7 @@ struct CellRow {
     std::uint32_t first = 0, count = 0;
     std::int64_t i_first = 0;
     double lo = 0, hi = 0;
+    bool every_cell = false;  ///< visit all `count` cells (a list already culled for the points)
 };
 
 /// q = Σ_k (e_k·d)² = π a² · (the filtered support's quadratic form): a sum of squares of linear
