@@ -240,6 +240,8 @@ struct GridScratch {
     gabor_raster::CellImpulses cells;
     std::vector<gabor_raster::CellRow> block_rows, rows;
     std::vector<std::int64_t> row_j, row_k;
+    std::vector<std::uint64_t> key;  // a single point's candidate cells
+    std::vector<Vec3> position;
 };
 
 GridScratch& grid_scratch()
@@ -338,19 +340,25 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
     gabor_raster::CellImpulses& cells = grid_scratch().cells;
     // A single point (eval(), eval_sliced()) keeps only the cells whose kernel can reach it: q in
     // double with the span's margin, a superset of what the kernel's float test keeps, so the
-    // sum is the same as in any grid.
+    // sum is the same as in any grid. Candidates are stored unconditionally and counted only when
+    // kept (most are rejected: a mispredicted branch each would cost more than the test).
     const bool single = nx == 1 && ny == 1;
-    auto push_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    GridScratch& candidates = grid_scratch();
+    std::size_t kept = 0;
+    auto test_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
         const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
         const std::uint64_t bits = mix64(key);
         const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
         const double cz = Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0;
-        if (single) {
-            const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
-            const double q = Solid ? dot3(n, d) * dot3(n, d) + inverse.quadratic_form(dot3(t, d), dot3(b, d))
-                                   : inverse.quadratic_form(d[0], d[1]);
-            if (!(q <= reach2)) return;
-        }
+        const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
+        const double q = Solid ? dot3(n, d) * dot3(n, d) + inverse.quadratic_form(dot3(t, d), dot3(b, d))
+                               : inverse.quadratic_form(d[0], d[1]);
+        candidates.key[kept] = key;
+        candidates.position[kept] = {cx, cy, cz};
+        kept += q <= reach2;
+    };
+    // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
+    auto push_impulse = [&](std::uint64_t key, double cx, double cy, double cz) {
         const std::uint64_t attributes = mix64(key + attribute_offset);
         const Vec3 omega = fixed ? omega_ : frequency_of(attributes);
         cells.x.push_back(cx);
@@ -370,6 +378,12 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
         }
         cells.log_amplitude.push_back(float(-damping.quadratic_form(st, sb)));
         push_phases(cells, attributes);
+    };
+    auto push_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+        const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
+        const std::uint64_t bits = mix64(key);
+        push_impulse(key, i * sx + position_fraction(bits) * sx, j * sy + position_fraction(bits >> 21) * sy,
+                     Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0);
     };
 
     for (std::size_t by = 0; by < ny; by += block_rows) {
@@ -393,17 +407,26 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                     RowSpan span;
                     if (!row_span(j, k, y_lo, y_hi, span)) continue;
                     const std::int64_t i0 = floor_index((x_lo + span.lo) / sx), i1 = floor_index((x_hi + span.hi) / sx);
+                    if (single) {  // one list of the kept cells, below
+                        if (candidates.key.size() < kept + std::size_t(i1 - i0 + 1)) {
+                            candidates.key.resize(2 * (kept + std::size_t(i1 - i0 + 1)));
+                            candidates.position.resize(candidates.key.size());
+                        }
+                        for (std::int64_t i = i0; i <= i1; ++i) test_cell(i, j, k);
+                        continue;
+                    }
                     gabor_raster::CellRow row;
                     row.first = std::uint32_t(cells.size());
                     for (std::int64_t i = i0; i <= i1; ++i) push_cell(i, j, k);
                     row.count = std::uint32_t(cells.size() - row.first);
                     row.i_first = i0;
-                    if (single) continue;  // one list, below
                     scratch.block_rows.push_back(row);
                     scratch.row_j.push_back(j), scratch.row_k.push_back(k);
                 }
             input.cells = &cells;
             if (single) {
+                for (std::size_t m = 0; m < kept; ++m)
+                    push_impulse(candidates.key[m], candidates.position[m][0], candidates.position[m][1], candidates.position[m][2]);
                 gabor_raster::CellRow every;
                 every.count = std::uint32_t(cells.size());
                 every.every_cell = true;
