@@ -23,10 +23,12 @@
 #include <stochtex/models/gabor_parameters.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 
 namespace stochtex {
 namespace {
@@ -480,6 +482,52 @@ TEST(GaborNoise, GridsAreBitIdenticalToThePointMethods)
             }
         }
     }
+}
+
+TEST(GaborNoise, KernelValuesAreTheSameOnEveryInstructionSet)
+{
+    // Lane-wise IEEE operations without fused multiply-add: the values must not depend on the
+    // instruction set the dispatcher picks (every one Highway compiled that this CPU has), for
+    // grids and single points, 2D and sliced, 1 and 3 channels.
+    constexpr std::size_t nx = 29, ny = 3;
+    std::vector<double> x(nx), y(ny);
+    for (std::size_t i = 0; i < nx; ++i) x[i] = -3071.3 + 0.83 * double(i);
+    for (std::size_t j = 0; j < ny; ++j) y[j] = 517.9 + 1.7 * double(j);
+    const TangentFrame frame = tangent_frame({-0.36, 0.48, 0.8}, {0.6, 0.8, 0});
+    auto evaluate = [&] {
+        std::vector<float> all;
+        for (GaborKind kind : all_kinds)
+            for (int channels : {1, 3}) {
+                GaborNoiseParameters parameters = noise_parameters(kind, 0.2, 0.3, 41);
+                parameters.channels = channels;
+                const GaborNoise noise(parameters);
+                const GaborFilter filter(parameters.bandwidth, filter_covariance(2.5, 0.7, -0.4, 1.1, 1.0));
+                for (bool solid : {false, true}) {
+                    std::vector<float> values(3 * nx * ny, 0.0f);
+                    float* const out[3] = {&values[0], &values[nx * ny], &values[2 * nx * ny]};
+                    if (solid) noise.eval_sliced_grid(x.data(), nx, y.data(), ny, 9.5, frame, filter, out);
+                    else noise.eval_2d_grid(x.data(), nx, y.data(), ny, filter, out);
+                    float point[3] = {0, 0, 0};
+                    if (solid) noise.eval_sliced({x[3], y[1], 9.5}, frame, filter, point);
+                    else noise.eval_2d(x[3], y[1], filter, point);
+                    all.insert(all.end(), values.begin(), values.end());
+                    all.insert(all.end(), point, point + 3);
+                }
+            }
+        return all;
+    };
+    const std::vector<float> reference = evaluate();
+    std::string targets;
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        const std::vector<float> values = evaluate();
+        ASSERT_EQ(values.size(), reference.size());
+        for (std::size_t i = 0; i < values.size(); ++i) ASSERT_EQ(values[i], reference[i]) << i;
+        targets += std::string(" ") + hwy::TargetName(target);
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    std::printf("identical values on:%s\n", targets.c_str());
 }
 
 // ---- The texture ---------------------------------------------------------------------------------
