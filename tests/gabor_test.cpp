@@ -23,10 +23,12 @@
 #include <stochtex/models/gabor_parameters.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 
 namespace stochtex {
 namespace {
@@ -370,6 +372,162 @@ TEST(GaborNoise, FilteredVarianceMatchesTheRetainedFraction)
             EXPECT_NEAR(sum_sliced / samples, rho_sliced, 0.05 * rho_sliced + 1e-4) << to_string(kind);
         }
     }
+}
+
+namespace {
+
+/// The filtered kernel sum written plainly: double precision, std::exp / std::cos, the kernel of
+/// gabor_kernel.h term by term over every impulse whose filtered support holds the point (2D:
+/// frame = nullptr; sliced: the plane of `frame` through p).
+double plain_filtered_sum(const GaborNoise& noise, const Vec3& p, const TangentFrame* frame, const GaborFilter& filter,
+                          int channel)
+{
+    const double a = noise.parameters().bandwidth, r = noise.radius();
+    const double reach = r * std::sqrt(filter.matrix.largest_eigenvalue()) * 1.01;
+    const Symmetric2& inverse = filter.inverse_a;
+    double sum = 0;
+    for (const GaborNoise::Impulse& impulse : frame ? noise.impulses_near_3d(p, reach) : noise.impulses_near_2d(p[0], p[1], reach)) {
+        const Vec3 d{p[0] - impulse.position[0], p[1] - impulse.position[1], frame ? p[2] - impulse.position[2] : 0.0};
+        const double pt = frame ? dot3(frame->t, d) : d[0], pb = frame ? dot3(frame->b, d) : d[1];
+        const double h = frame ? dot3(frame->n, d) : 0.0;
+        const double st = frame ? dot3(frame->t, impulse.omega) : impulse.omega[0];
+        const double sb = frame ? dot3(frame->b, impulse.omega) : impulse.omega[1];
+        const double wn = frame ? dot3(frame->n, impulse.omega) : 0.0;
+        const double q = h * h + inverse.quadratic_form(pt, pb);
+        if (q > r * r) continue;
+        const double wx = inverse.xx * st + inverse.xy * sb, wy = inverse.xy * st + inverse.yy * sb;
+        sum += std::exp(-M_PI * a * a * q - filter.damping.quadratic_form(st, sb)) *
+               std::cos(2 * M_PI * (wx * pt + wy * pb + wn * h) + impulse.phase[std::size_t(channel)]);
+    }
+    return sum * (frame ? noise.gain_3d() : noise.gain_2d()) * filter.amplitude;
+}
+
+}  // namespace
+
+TEST(GaborNoise, RasterKernelMatchesTheDoublePrecisionSumFilteredAndSliced)
+{
+    // The one evaluation path (float kernels in SIMD lanes, gabor_raster_kernels.h) against the
+    // plain double-precision filtered sum, in σ of the unfiltered noise (its values are
+    // normalised): footprints from none to elongated and large, 2D and sliced on random planes,
+    // grids of points as a raster evaluates them. Bound 1e-5 σ (docs/models/gabor.md, Precision).
+    const Symmetric2 footprints[] = {{0, 0, 0}, {0.5, 0, 0.5}, {9, 3, 2}, {40, -10, 5}, {0.2, 0.1, 60}};
+    double worst = 0, square_sum = 0;
+    std::size_t compared = 0;
+    for (GaborKind kind : all_kinds) {
+        const GaborNoiseParameters parameters = noise_parameters(kind, 0.25, 0.25, 23);
+        const GaborNoise noise(parameters);
+        SplitMix64 rng(24);
+        for (const Symmetric2& footprint : footprints) {
+            const Symmetric2 sigma = footprint.xx == 0 ? Symmetric2{}
+                                         : filter_covariance(std::sqrt(footprint.xx), 0, footprint.xy / std::sqrt(footprint.xx),
+                                                             std::sqrt(std::max(0.0, footprint.yy - footprint.xy * footprint.xy / footprint.xx)), 2.0);
+            const GaborFilter filter(parameters.bandwidth, sigma);
+            for (bool solid : {false, true}) {
+                const TangentFrame frame = tangent_frame(random_unit(rng), random_unit(rng));
+                const Vec3 origin = random_point(rng, 1e5);
+                constexpr std::size_t nx = 37, ny = 5;
+                std::vector<double> x(nx), y(ny);
+                for (std::size_t i = 0; i < nx; ++i) x[i] = origin[0] + 0.7 * double(i);
+                for (std::size_t j = 0; j < ny; ++j) y[j] = origin[1] + 1.3 * double(j);
+                std::vector<float> values(3 * nx * ny);
+                float* const out[3] = {&values[0], &values[nx * ny], &values[2 * nx * ny]};
+                if (solid) noise.eval_sliced_grid(x.data(), nx, y.data(), ny, origin[2], frame, filter, out);
+                else noise.eval_2d_grid(x.data(), nx, y.data(), ny, filter, out);
+                for (std::size_t j = 0; j < ny; ++j)
+                    for (std::size_t i = 0; i < nx; i += 3)
+                        for (int c = 0; c < 3; ++c) {
+                            const double plain = plain_filtered_sum(noise, {x[i], y[j], origin[2]}, solid ? &frame : nullptr, filter, c);
+                            const double error = std::abs(out[c][j * nx + i] - plain);
+                            worst = std::max(worst, error);
+                            square_sum += error * error;
+                            ++compared;
+                        }
+            }
+        }
+    }
+    std::printf("raster kernel vs plain double sum, filtered, 2D and sliced, %zu values: max %.2e sigma, RMS %.2e sigma\n",
+                compared, worst, std::sqrt(square_sum / double(compared)));
+    EXPECT_LT(worst, 1e-5);
+}
+
+TEST(GaborNoise, GridsAreBitIdenticalToThePointMethods)
+{
+    // A point's value does not depend on which points share its vector, block or grid: grids of
+    // odd sizes (partial vectors, several blocks), decreasing x, against eval_2d / eval_sliced.
+    for (GaborKind kind : all_kinds) {
+        for (int channels : {1, 3}) {
+            GaborNoiseParameters parameters = noise_parameters(kind, 0.25, 0.25, 31);
+            parameters.channels = channels;
+            const GaborNoise noise(parameters);
+            const GaborFilter filter(parameters.bandwidth, filter_covariance(1.5, 0.4, -0.2, 0.9, 1.0));
+            const TangentFrame frame = tangent_frame({0.48, -0.64, 0.6}, {0.8, 0.6, 0});
+            constexpr std::size_t nx = 71, ny = 19;
+            std::vector<double> x(nx), y(ny);
+            for (std::size_t i = 0; i < nx; ++i) x[i] = 812.25 - 0.9 * double(i);
+            for (std::size_t j = 0; j < ny; ++j) y[j] = -40.5 + 1.1 * double(j);
+            const double z = 17.125;
+            for (bool solid : {false, true}) {
+                std::vector<float> values(3 * nx * ny, -1.0f);
+                float* const out[3] = {&values[0], &values[nx * ny], &values[2 * nx * ny]};
+                if (solid) noise.eval_sliced_grid(x.data(), nx, y.data(), ny, z, frame, filter, out);
+                else noise.eval_2d_grid(x.data(), nx, y.data(), ny, filter, out);
+                for (std::size_t j = 0; j < ny; ++j)
+                    for (std::size_t i = 0; i < nx; ++i) {
+                        float point[3];
+                        if (solid) noise.eval_sliced({x[i], y[j], z}, frame, filter, point);
+                        else noise.eval_2d(x[i], y[j], filter, point);
+                        for (int c = 0; c < channels; ++c)
+                            ASSERT_EQ(out[c][j * nx + i], point[c]) << to_string(kind) << (solid ? " sliced " : " 2D ") << i << ", " << j;
+                    }
+            }
+        }
+    }
+}
+
+TEST(GaborNoise, KernelValuesAreTheSameOnEveryInstructionSet)
+{
+    // Lane-wise IEEE operations without fused multiply-add: the values must not depend on the
+    // instruction set the dispatcher picks (every one Highway compiled that this CPU has), for
+    // grids and single points, 2D and sliced, 1 and 3 channels.
+    constexpr std::size_t nx = 29, ny = 3;
+    std::vector<double> x(nx), y(ny);
+    for (std::size_t i = 0; i < nx; ++i) x[i] = -3071.3 + 0.83 * double(i);
+    for (std::size_t j = 0; j < ny; ++j) y[j] = 517.9 + 1.7 * double(j);
+    const TangentFrame frame = tangent_frame({-0.36, 0.48, 0.8}, {0.6, 0.8, 0});
+    auto evaluate = [&] {
+        std::vector<float> all;
+        for (GaborKind kind : all_kinds)
+            for (int channels : {1, 3}) {
+                GaborNoiseParameters parameters = noise_parameters(kind, 0.2, 0.3, 41);
+                parameters.channels = channels;
+                const GaborNoise noise(parameters);
+                const GaborFilter filter(parameters.bandwidth, filter_covariance(2.5, 0.7, -0.4, 1.1, 1.0));
+                for (bool solid : {false, true}) {
+                    std::vector<float> values(3 * nx * ny, 0.0f);
+                    float* const out[3] = {&values[0], &values[nx * ny], &values[2 * nx * ny]};
+                    if (solid) noise.eval_sliced_grid(x.data(), nx, y.data(), ny, 9.5, frame, filter, out);
+                    else noise.eval_2d_grid(x.data(), nx, y.data(), ny, filter, out);
+                    float point[3] = {0, 0, 0};
+                    if (solid) noise.eval_sliced({x[3], y[1], 9.5}, frame, filter, point);
+                    else noise.eval_2d(x[3], y[1], filter, point);
+                    all.insert(all.end(), values.begin(), values.end());
+                    all.insert(all.end(), point, point + 3);
+                }
+            }
+        return all;
+    };
+    const std::vector<float> reference = evaluate();
+    std::string targets;
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        const std::vector<float> values = evaluate();
+        ASSERT_EQ(values.size(), reference.size());
+        for (std::size_t i = 0; i < values.size(); ++i) ASSERT_EQ(values[i], reference[i]) << i;
+        targets += std::string(" ") + hwy::TargetName(target);
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    std::printf("identical values on:%s\n", targets.c_str());
 }
 
 // ---- The texture ---------------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 #include "models/gabor/gabor_noise.h"
 #include <stochtex/models/gabor_parameters.h>
 
-#include "numerics/fast_math.h"
+#include "models/gabor/gabor_raster_kernels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,67 +59,6 @@ double chi_square_3_cdf(double x)
 }
 
 }  // namespace
-
-/// Kernels waiting for their exp and sin/cos: evaluated in blocks so the loop vectorises.
-struct GaborNoise::Batch {
-    static constexpr int capacity = 64;
-    int size = 0;
-    int channels;
-    float exponent[capacity], turns[capacity];
-    float cos_phase[max_channels][capacity], sin_phase[max_channels][capacity];
-    float value[max_channels][capacity];
-    double sum[max_channels] = {0, 0, 0};
-
-    explicit Batch(int channel_count) : channels(channel_count) {}
-
-    void add(float kernel_exponent, float kernel_turns, std::uint64_t attributes)
-    {
-        exponent[size] = std::max(kernel_exponent, -87.0f);  // fast_exp's domain; e^-87 ≈ 0
-        turns[size] = kernel_turns;
-        for (int c = 0; c < max_channels; ++c) {  // all three: flush() reads them (unused ones too)
-            const int index = phase_index(attributes, c);
-            cos_phase[c][size] = phase_table.cosine[index];
-            sin_phase[c][size] = phase_table.sine[index];
-        }
-        if (++size == capacity) flush();
-    }
-
-    void flush()
-    {
-        // cos(2πT + φ) = cos 2πT cos φ − sin 2πT sin φ: one sin/cos per kernel for all channels.
-        for (int i = 0; i < size; ++i) {
-            const float envelope = fast_exp(exponent[i]);
-            float s, c;
-            fast_sincos_turns(turns[i], s, c);
-            const float es = envelope * s, ec = envelope * c;
-            value[0][i] = ec * cos_phase[0][i] - es * sin_phase[0][i];
-            value[1][i] = ec * cos_phase[1][i] - es * sin_phase[1][i];
-            value[2][i] = ec * cos_phase[2][i] - es * sin_phase[2][i];
-        }
-        // Summed separately, in order: float reductions do not vectorise without reassociation.
-        for (int c = 0; c < channels; ++c)
-            for (int i = 0; i < size; ++i) sum[c] += value[c][i];
-        size = 0;
-    }
-};
-
-/// Impulses whose support reaches the point. Candidates are stored unconditionally and the count
-/// advances only for those inside the support: most candidates are rejected, and a mispredicted
-/// branch per kept one would cost more than the test itself.
-struct GaborNoise::Kept {
-    static constexpr int capacity = 256;
-    int size = 0;
-    double u[capacity], v[capacity], h[capacity], q[capacity];
-    std::uint64_t attribute_counter[capacity];
-
-    void push(double in_plane_u, double in_plane_v, double height, double distance2, double limit2, std::uint64_t counter)
-    {
-        u[size] = in_plane_u, v[size] = in_plane_v, h[size] = height, q[size] = distance2;
-        attribute_counter[size] = counter;
-        size += distance2 <= limit2;
-    }
-    bool full() const { return size == capacity; }
-};
 
 namespace {
 
@@ -264,141 +203,269 @@ inline bool row_span_3d(const Ellipsoid& e, double r2, double y0, double y1, dou
 
 }  // namespace
 
+namespace {
+
+/// Cells are visited over the support of a radius this much larger than the kernels': every
+/// kernel the float test q ≤ limit can keep (q is exact to ~1e-6 relative) lies well inside, so
+/// which cells a point's vector visits never decides which kernels it sums.
+constexpr double span_margin = 1.001;
+
+/// The Envelope (gabor_raster_kernels.h) of a filter, 2D or in the plane (t, b) of a slice with
+/// normal n: π a² (h² + pᵀA⁻¹p) as squares of linear forms, from the Cholesky factor of π a² A⁻¹
+/// (a, β; β, c) = (√a, β/√a)ᵀ(√a, β/√a) + (0, √(det/a))ᵀ(0, √(det/a)).
+gabor_raster::Envelope envelope_of(const Symmetric2& inverse, double pi_a2, double r2, const TangentFrame* frame)
+{
+    const double a = pi_a2 * inverse.xx, beta = pi_a2 * inverse.xy, c = pi_a2 * inverse.yy;
+    const double root_a = std::sqrt(a), cross = beta / root_a, rest = std::sqrt(std::max(0.0, (a * c - beta * beta) / a));
+    gabor_raster::Envelope envelope;
+    envelope.limit = float(pi_a2 * r2);
+    if (!frame) {
+        envelope.e[1][0] = float(root_a), envelope.e[1][1] = float(cross);
+        envelope.e[2][1] = float(rest);
+        return envelope;
+    }
+    const double root_pi_a2 = std::sqrt(pi_a2);
+    for (int k = 0; k < 3; ++k) {
+        envelope.e[0][k] = float(root_pi_a2 * frame->n[k]);
+        envelope.e[1][k] = float(root_a * frame->t[k] + cross * frame->b[k]);
+        envelope.e[2][k] = float(rest * frame->b[k]);
+    }
+    return envelope;
+}
+
+/// What a block of points shares: its cells' impulses, its rows of cells (and their lattice
+/// indices), and one row of points' list of those rows. Kept per thread: evaluation allocates
+/// nothing once a thread has seen a block as large.
+struct GridScratch {
+    gabor_raster::CellImpulses cells;
+    std::vector<gabor_raster::CellRow> block_rows, rows;
+    std::vector<std::int64_t> row_j, row_k;
+    std::vector<std::uint64_t> key;  // a single point's candidate cells
+    std::vector<Vec3> position;
+};
+
+GridScratch& grid_scratch()
+{
+    thread_local GridScratch scratch;
+    return scratch;
+}
+
+/// Blocks of points sharing one cell cache: wide enough for whole vectors, small enough that the
+/// cells of the finest octaves stay in the L1/L2 cache.
+constexpr std::size_t block_columns = 64, block_rows = 16;
+
+void push_phases(gabor_raster::CellImpulses& cells, std::uint64_t attributes)
+{
+    for (int c = 0; c < 3; ++c) {
+        const int index = phase_index(attributes, c);
+        cells.cos_phase[c].push_back(phase_table.cosine[index]);
+        cells.sin_phase[c].push_back(phase_table.sine[index]);
+    }
+}
+
+}  // namespace
+
 void GaborNoise::eval_2d(double x, double y, const GaborFilter& filter, float out[max_channels]) const
 {
-    const double a = parameters_.bandwidth, r2 = radius_ * radius_, pi_a2 = M_PI * a * a;
-    const Symmetric2& inverse = filter.inverse_a;
-    const Symmetric2& damping = filter.damping;
-    // The filtered support is the ellipse dᵀA⁻¹d ≤ r²: its bounding box, and a disc holding it.
-    const double extent_y = radius_ * std::sqrt(filter.matrix.yy);
-    const double sx = cell_x_, sy = cell_y_;
-
-    // Anisotropic noise: one frequency, so its filtered form is computed once.
-    const bool fixed = parameters_.kind == GaborKind::anisotropic;
-    const double fixed_fx = inverse.xx * omega_[0] + inverse.xy * omega_[1];
-    const double fixed_fy = inverse.xy * omega_[0] + inverse.yy * omega_[1];
-    const double fixed_damping = damping.quadratic_form(omega_[0], omega_[1]);
-
-    Batch batch(parameters_.channels);
-    Kept kept;
-    auto evaluate_kept = [&] {
-        for (int n = 0; n < kept.size; ++n) {
-            const std::uint64_t attributes = mix64(kept.attribute_counter[n]);
-            const double dx = kept.u[n], dy = kept.v[n];
-            double wx = fixed_fx, wy = fixed_fy, damp = fixed_damping;
-            if (!fixed) {
-                const Vec3 omega = frequency_of(attributes);
-                wx = inverse.xx * omega[0] + inverse.xy * omega[1];
-                wy = inverse.xy * omega[0] + inverse.yy * omega[1];
-                damp = damping.quadratic_form(omega[0], omega[1]);
-            }
-            batch.add(float(-pi_a2 * kept.q[n] - damp), float(wx * dx + wy * dy), attributes);
-        }
-        kept.size = 0;
-    };
-    std::int64_t j0, j1;
-    cell_span(y, extent_y, sy, j0, j1);
-    for (std::int64_t j = j0; j <= j1; ++j) {
-        const double cell_dy = j * sy - y;  // the row's lower edge relative to the point
-        RowSpan span;
-        if (!row_span_2d(inverse, r2, cell_dy, cell_dy + sy, span)) continue;
-        const std::int64_t i0 = floor_index((x + span.lo) / sx), i1 = floor_index((x + span.hi) / sx);
-        for (std::int64_t i = i0; i <= i1; ++i) {
-            if (kept.full()) evaluate_kept();
-            const std::uint64_t key = cell_key_2d(i, j);
-            const std::uint64_t bits = mix64(key);
-            const double dx = -(i * sx - x + position_fraction(bits) * sx);  // x − x_i
-            const double dy = -(cell_dy + position_fraction(bits >> 21) * sy);
-            kept.push(dx, dy, 0, inverse.quadratic_form(dx, dy), r2, key + attribute_offset);
-        }
-    }
-    evaluate_kept();
-    batch.flush();
-    const double gain = gain_2d_ * filter.amplitude;
-    for (int c = 0; c < parameters_.channels; ++c) out[c] = float(batch.sum[c] * gain);
+    float* const channels[max_channels] = {&out[0], &out[1], &out[2]};
+    eval_grid<false>(&x, 1, &y, 1, 0, TangentFrame{}, filter, channels);
 }
 
 void GaborNoise::eval_sliced(const Vec3& p, const TangentFrame& frame, const GaborFilter& filter,
                              float out[max_channels]) const
 {
-    const double a = parameters_.bandwidth, r = radius_, r2 = r * r, pi_a2 = M_PI * a * a;
+    float* const channels[max_channels] = {&out[0], &out[1], &out[2]};
+    eval_grid<true>(&p[0], 1, &p[1], 1, p[2], frame, filter, channels);
+}
+
+void GaborNoise::eval_2d_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, const GaborFilter& filter,
+                              float* const out[max_channels]) const
+{
+    eval_grid<false>(x, nx, y, ny, 0, TangentFrame{}, filter, out);
+}
+
+void GaborNoise::eval_sliced_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
+                                  const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const
+{
+    eval_grid<true>(x, nx, y, ny, z, frame, filter, out);
+}
+
+template <bool Solid>
+void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
+                           const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const
+{
+    const double a = parameters_.bandwidth, pi_a2 = M_PI * a * a;
+    const double reach = radius_ * span_margin, reach2 = reach * reach;
     const Symmetric2& inverse = filter.inverse_a;
     const Symmetric2& damping = filter.damping;
     const Vec3 &t = frame.t, &b = frame.b, &n = frame.n;
-    // The support is the ellipsoid h² + pᵀA⁻¹p ≤ r² (thickness r along n: slicing does not
-    // widen kernels, filtering widens them in the plane). Its bounding box, and a ball holding it.
-    // Its extent along texture axis e is r·√((M⁻¹)_ee), M⁻¹ = n nᵀ + T A Tᵀ.
-    double extent[3];
-    for (int e = 0; e < 3; ++e) extent[e] = r * std::sqrt(n[e] * n[e] + filter.matrix.quadratic_form(t[e], b[e]));
-    const double s = cell_3d_;
-    Ellipsoid support;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            support.m[i][j] = n[i] * n[j] + inverse.xx * t[i] * t[j] + inverse.xy * (t[i] * b[j] + b[i] * t[j]) +
-                              inverse.yy * b[i] * b[j];
-    const double (&m)[3][3] = support.m;
-    support.schur_min = Symmetric2{m[1][1] - m[0][1] * m[0][1] / m[0][0], m[1][2] - m[0][1] * m[0][2] / m[0][0],
-                                   m[2][2] - m[0][2] * m[0][2] / m[0][0]}
-                            .smallest_eigenvalue();
-
     const bool fixed = parameters_.kind == GaborKind::anisotropic;
-    auto sliced = [&](const Vec3& omega, double& wx, double& wy, double& wn, double& damp) {
-        const double st = dot3(t, omega), sb = dot3(b, omega);  // ω^s (eq. 6)
-        wx = inverse.xx * st + inverse.xy * sb;                   // A⁻¹ω^s (eq. 10)
-        wy = inverse.xy * st + inverse.yy * sb;
-        wn = dot3(n, omega);
-        damp = damping.quadratic_form(st, sb);
-    };
-    double fixed_wx = 0, fixed_wy = 0, fixed_wn = 0, fixed_damping = 0;
-    if (fixed) sliced(omega_, fixed_wx, fixed_wy, fixed_wn, fixed_damping);
 
-    Batch batch(parameters_.channels);
-    Kept kept;
-    auto evaluate_kept = [&] {
-        for (int m = 0; m < kept.size; ++m) {
-            const std::uint64_t attributes = mix64(kept.attribute_counter[m]);
-            double wx = fixed_wx, wy = fixed_wy, wn = fixed_wn, damp = fixed_damping;
-            if (!fixed) sliced(frequency_of(attributes), wx, wy, wn, damp);
-            // Phase: the in-plane harmonic plus the slicing shift 2π h (n·ω) (eq. 6).
-            batch.add(float(-pi_a2 * kept.q[m] - damp), float(wx * kept.u[m] + wy * kept.v[m] + kept.h[m] * wn), attributes);
-        }
-        kept.size = 0;
+    gabor_raster::RowInput input;
+    input.envelope = envelope_of(inverse, pi_a2, radius_ * radius_, Solid ? &frame : nullptr);
+    input.gain = (Solid ? gain_3d_ : gain_2d_) * filter.amplitude;
+    input.channels = parameters_.channels;
+    input.solid = Solid;
+    input.z = z;
+    const double sx = Solid ? cell_3d_ : cell_x_, sy = Solid ? cell_3d_ : cell_y_, sz = cell_3d_;
+    input.cell_x = sx;
+
+    // The support: 2D the ellipse dᵀA⁻¹d ≤ r²; sliced the ellipsoid h² + pᵀA⁻¹p ≤ r² (thickness r
+    // along n: slicing does not widen kernels, filtering widens them in the plane), whose extent
+    // along texture axis e is r·√((M⁻¹)_ee), M⁻¹ = n nᵀ + T A Tᵀ.
+    Ellipsoid support{};
+    double extent_y = reach * std::sqrt(filter.matrix.yy), extent_z = 0;
+    if (Solid) {
+        extent_y = reach * std::sqrt(n[1] * n[1] + filter.matrix.quadratic_form(t[1], b[1]));
+        extent_z = reach * std::sqrt(n[2] * n[2] + filter.matrix.quadratic_form(t[2], b[2]));
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                support.m[i][j] = n[i] * n[j] + inverse.xx * t[i] * t[j] + inverse.xy * (t[i] * b[j] + b[i] * t[j]) +
+                                  inverse.yy * b[i] * b[j];
+        const double (&m)[3][3] = support.m;
+        support.schur_min = Symmetric2{m[1][1] - m[0][1] * m[0][1] / m[0][0], m[1][2] - m[0][1] * m[0][2] / m[0][0],
+                                       m[2][2] - m[0][2] * m[0][2] / m[0][0]}
+                                .smallest_eigenvalue();
+    }
+    // The span along x of the support over the row of cells (j, k), for points with y in
+    // [y_lo, y_hi] (and the grid's z).
+    auto row_span = [&](std::int64_t j, std::int64_t k, double y_lo, double y_hi, RowSpan& span) {
+        const double y0 = j * sy - y_hi, y1 = j * sy + sy - y_lo;
+        if (!Solid) return row_span_2d(inverse, reach2, y0, y1, span);
+        const double z0 = k * sz - z;
+        return row_span_3d(support, reach2, y0, y1, z0, z0 + sz, span);
     };
-    std::int64_t k0, k1, j0, j1;
-    cell_span(p[2], extent[2], s, k0, k1);
-    cell_span(p[1], extent[1], s, j0, j1);
-    for (std::int64_t k = k0; k <= k1; ++k) {
-        const double cell_dz = k * s - p[2];
-        for (std::int64_t j = j0; j <= j1; ++j) {
-            const double cell_dy = j * s - p[1];
-            RowSpan span;
-            if (!row_span_3d(support, r2, cell_dy, cell_dy + s, cell_dz, cell_dz + s, span)) continue;
-            const std::int64_t i0 = floor_index((p[0] + span.lo) / s), i1 = floor_index((p[0] + span.hi) / s);
-            for (std::int64_t i = i0; i <= i1; ++i) {
-                const double cell_dx = i * s - p[0];
-                if (kept.full()) evaluate_kept();
-                const std::uint64_t key = cell_key_3d(i, j, k);
-                const std::uint64_t bits = mix64(key);
-                const double dx = -(cell_dx + position_fraction(bits) * s), dy = -(cell_dy + position_fraction(bits >> 21) * s);
-                const double dz = -(cell_dz + position_fraction(bits >> 42) * s);
-                const double h = n[0] * dx + n[1] * dy + n[2] * dz;
-                const double pt = t[0] * dx + t[1] * dy + t[2] * dz, pb = b[0] * dx + b[1] * dy + b[2] * dz;
-                kept.push(pt, pb, h, h * h + inverse.quadratic_form(pt, pb), r2, key + attribute_offset);
+
+    // One impulse of cell (i, j[, k]) into the cache, prepared for this filter (and frame).
+    gabor_raster::CellImpulses& cells = grid_scratch().cells;
+    // A single point (eval(), eval_sliced()) keeps only the cells whose kernel can reach it: q in
+    // double with the span's margin, a superset of what the kernel's float test keeps, so the
+    // sum is the same as in any grid. Candidates are stored unconditionally and counted only when
+    // kept (most are rejected: a mispredicted branch each would cost more than the test).
+    const bool single = nx == 1 && ny == 1;
+    GridScratch& candidates = grid_scratch();
+    std::size_t kept = 0;
+    auto test_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+        const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
+        const std::uint64_t bits = mix64(key);
+        const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
+        const double cz = Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0;
+        const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
+        const double q = Solid ? dot3(n, d) * dot3(n, d) + inverse.quadratic_form(dot3(t, d), dot3(b, d))
+                               : inverse.quadratic_form(d[0], d[1]);
+        candidates.key[kept] = key;
+        candidates.position[kept] = {cx, cy, cz};
+        kept += q <= reach2;
+    };
+    // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
+    auto push_impulse = [&](std::uint64_t key, double cx, double cy, double cz) {
+        const std::uint64_t attributes = mix64(key + attribute_offset);
+        const Vec3 omega = fixed ? omega_ : frequency_of(attributes);
+        cells.x.push_back(cx);
+        cells.y.push_back(cy);
+        cells.z.push_back(cz);
+        // In-plane frequency ω^s (2D: the projected one), filtered: A⁻¹ω^s (eq. 10).
+        const double st = Solid ? dot3(t, omega) : omega[0], sb = Solid ? dot3(b, omega) : omega[1];
+        const double wx = inverse.xx * st + inverse.xy * sb, wy = inverse.xy * st + inverse.yy * sb;
+        if (Solid) {
+            // The phase 2π (A⁻¹ω^s·p + h n·ω) (eq. 6) as one frequency in texture axes.
+            const double wn = dot3(n, omega);
+            cells.wx.push_back(float(wx * t[0] + wy * b[0] + wn * n[0]));
+            cells.wy.push_back(float(wx * t[1] + wy * b[1] + wn * n[1]));
+            cells.wz.push_back(float(wx * t[2] + wy * b[2] + wn * n[2]));
+        } else {
+            cells.wx.push_back(float(wx)), cells.wy.push_back(float(wy)), cells.wz.push_back(0.0f);
+        }
+        cells.log_amplitude.push_back(float(-damping.quadratic_form(st, sb)));
+        push_phases(cells, attributes);
+    };
+    auto push_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+        const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
+        const std::uint64_t bits = mix64(key);
+        push_impulse(key, i * sx + position_fraction(bits) * sx, j * sy + position_fraction(bits >> 21) * sy,
+                     Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0);
+    };
+
+    for (std::size_t by = 0; by < ny; by += block_rows) {
+        const std::size_t rows_here = std::min(block_rows, ny - by);
+        const auto [y_lo_at, y_hi_at] = std::minmax_element(y + by, y + by + rows_here);
+        const double y_lo = *y_lo_at, y_hi = *y_hi_at;
+        for (std::size_t bx = 0; bx < nx; bx += block_columns) {
+            const std::size_t columns = std::min(block_columns, nx - bx);
+            const auto [x_lo_at, x_hi_at] = std::minmax_element(x + bx, x + bx + columns);
+            const double x_lo = *x_lo_at, x_hi = *x_hi_at;
+            // The block's cells: every row of cells its support reaches, each over the span
+            // that the block's points need.
+            GridScratch& scratch = grid_scratch();
+            cells.clear();
+            scratch.block_rows.clear(), scratch.row_j.clear(), scratch.row_k.clear();
+            std::int64_t k0 = 0, k1 = 0, j0, j1;
+            if (Solid) cell_span(z, extent_z, sz, k0, k1);
+            j0 = floor_index((y_lo - extent_y) / sy), j1 = floor_index((y_hi + extent_y) / sy);
+            for (std::int64_t k = k0; k <= k1; ++k)
+                for (std::int64_t j = j0; j <= j1; ++j) {
+                    RowSpan span;
+                    if (!row_span(j, k, y_lo, y_hi, span)) continue;
+                    const std::int64_t i0 = floor_index((x_lo + span.lo) / sx), i1 = floor_index((x_hi + span.hi) / sx);
+                    if (single) {  // one list of the kept cells, below
+                        if (candidates.key.size() < kept + std::size_t(i1 - i0 + 1)) {
+                            candidates.key.resize(2 * (kept + std::size_t(i1 - i0 + 1)));
+                            candidates.position.resize(candidates.key.size());
+                        }
+                        for (std::int64_t i = i0; i <= i1; ++i) test_cell(i, j, k);
+                        continue;
+                    }
+                    gabor_raster::CellRow row;
+                    row.first = std::uint32_t(cells.size());
+                    for (std::int64_t i = i0; i <= i1; ++i) push_cell(i, j, k);
+                    row.count = std::uint32_t(cells.size() - row.first);
+                    row.i_first = i0;
+                    scratch.block_rows.push_back(row);
+                    scratch.row_j.push_back(j), scratch.row_k.push_back(k);
+                }
+            input.cells = &cells;
+            if (single) {
+                for (std::size_t m = 0; m < kept; ++m)
+                    push_impulse(candidates.key[m], candidates.position[m][0], candidates.position[m][1], candidates.position[m][2]);
+                gabor_raster::CellRow every;
+                every.count = std::uint32_t(cells.size());
+                every.every_cell = true;
+                input.rows = &every;
+                input.row_count = 1;
+                input.y = y[0];
+                float* row_out[max_channels] = {};
+                for (int c = 0; c < parameters_.channels; ++c) row_out[c] = out[c];
+                gabor_raster::sum_row(input, x, 1, row_out);
+                return;
+            }
+            for (std::size_t py = by; py < by + rows_here; ++py) {
+                // This row of points' spans (narrower than the block's: fewer cells per vector).
+                scratch.rows.clear();
+                for (std::size_t r = 0; r < scratch.block_rows.size(); ++r) {
+                    RowSpan span;
+                    if (!row_span(scratch.row_j[r], scratch.row_k[r], y[py], y[py], span)) continue;
+                    gabor_raster::CellRow row = scratch.block_rows[r];
+                    row.lo = span.lo, row.hi = span.hi;
+                    scratch.rows.push_back(row);
+                }
+                input.rows = scratch.rows.data();
+                input.row_count = scratch.rows.size();
+                input.y = y[py];
+                float* row_out[max_channels] = {};
+                for (int c = 0; c < parameters_.channels; ++c) row_out[c] = out[c] + py * nx + bx;
+                gabor_raster::sum_row(input, x + bx, columns, row_out);
             }
         }
     }
-    evaluate_kept();
-    batch.flush();
-    const double gain = gain_3d_ * filter.amplitude;
-    for (int c = 0; c < parameters_.channels; ++c) out[c] = float(batch.sum[c] * gain);
 }
 
-std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_2d(double x, double y) const
+std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_2d(double x, double y, double reach) const
 {
     std::vector<Impulse> impulses;
+    if (!(reach > 0)) reach = radius_;
     std::int64_t i0, i1, j0, j1;
-    cell_span(x, radius_, cell_x_, i0, i1);
-    cell_span(y, radius_, cell_y_, j0, j1);
+    cell_span(x, reach, cell_x_, i0, i1);
+    cell_span(y, reach, cell_y_, j0, j1);
     for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t i = i0; i <= i1; ++i) {
             const std::uint64_t key = cell_key_2d(i, j), bits = mix64(key), attributes = mix64(key + attribute_offset);
@@ -411,12 +478,13 @@ std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_2d(double x, double y
     return impulses;
 }
 
-std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_3d(const Vec3& p) const
+std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_3d(const Vec3& p, double reach) const
 {
     std::vector<Impulse> impulses;
+    if (!(reach > 0)) reach = radius_;
     const double s = cell_3d_;
     std::int64_t lo[3], hi[3];
-    for (int e = 0; e < 3; ++e) cell_span(p[e], radius_, s, lo[e], hi[e]);
+    for (int e = 0; e < 3; ++e) cell_span(p[e], reach, s, lo[e], hi[e]);
     for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
         for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
             for (std::int64_t i = lo[0]; i <= hi[0]; ++i) {

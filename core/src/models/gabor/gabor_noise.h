@@ -34,6 +34,7 @@
 #include <stochtex/models/gabor_parameters.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -66,6 +67,16 @@ public:
     /// Unfiltered (identity filter), it equals the solid noise at p for any frame (eq. 6).
     void eval_sliced(const Vec3& p, const TangentFrame& frame, const GaborFilter& filter, float out[max_channels]) const;
 
+    /// eval_2d at every point (x[i], y[j]) of a grid, i < nx, j < ny: channel c of the point goes
+    /// to out[c][j·nx + i] (c < channels). Rows of points share the cells they reach and are
+    /// summed in vectors (gabor_raster_kernels.h); the point methods are this with one point, so
+    /// the values are bit-identical to eval_2d's.
+    void eval_2d_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, const GaborFilter& filter,
+                      float* const out[max_channels]) const;
+    /// eval_sliced at every point (x[i], y[j], z) of a grid, all with one frame and filter.
+    void eval_sliced_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
+                          const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const;
+
     /// Plain double-precision kernel sums with std::exp and std::cos (no slicing, no filter), over
     /// the same impulses: the reference the fast paths are tested and benchmarked against.
     double reference_2d(double x, double y, int channel) const;
@@ -77,9 +88,10 @@ public:
         Vec3 omega;     ///< for the 2D noise: the projected frequency (omega[2] = 0)
         std::array<double, max_channels> phase;
     };
-    /// Every impulse whose kernel can reach p (3D: within the support radius), in a fixed order.
-    std::vector<Impulse> impulses_near_3d(const Vec3& p) const;
-    std::vector<Impulse> impulses_near_2d(double x, double y) const;
+    /// Every impulse of the cells within `reach` of p along each axis (0: the support radius,
+    /// which every kernel that can reach p is within unfiltered), in a fixed order.
+    std::vector<Impulse> impulses_near_3d(const Vec3& p, double reach = 0) const;
+    std::vector<Impulse> impulses_near_2d(double x, double y, double reach = 0) const;
 
     const GaborNoiseParameters& parameters() const { return parameters_; }
     /// Support radius r: the envelope exp(−π a² r²) = 5 %.
@@ -98,8 +110,9 @@ public:
     const Vec3& plane_e2() const { return plane_e2_; }
 
 private:
-    struct Batch;
-    struct Kept;
+    template <bool Solid>
+    void eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z, const TangentFrame& frame,
+                   const GaborFilter& filter, float* const out[max_channels]) const;
 
     std::uint64_t cell_key_2d(std::int64_t i, std::int64_t j) const;
     std::uint64_t cell_key_3d(std::int64_t i, std::int64_t j, std::int64_t k) const;

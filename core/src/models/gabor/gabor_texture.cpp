@@ -4,6 +4,7 @@
 #include "models/gabor/gabor_statistics.h"
 #include "numerics/random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -93,13 +94,14 @@ GaborTexture::GaborTexture(const TextureDescription& description, const Vec2* pe
     }
 }
 
-template <class OctaveNoise>
-Rgb GaborTexture::synthesize(const Symmetric2& footprint, const TangentFrame& frame, const OctaveNoise& octave_noise) const
+GaborTexture::Plan GaborTexture::plan(const Symmetric2& footprint, const TangentFrame& frame) const
 {
-    std::array<double, 3> kept{}, dropped{};
+    Plan plan;
+    std::array<double, 3> dropped{};
     for (const auto& weight : missing_weights_)
         for (int c = 0; c < 3; ++c) dropped[c] += weight[c] * weight[c];
-    for (const Octave& octave : octaves_) {
+    for (std::size_t k = 0; k < octaves_.size(); ++k) {
+        const Octave& octave = octaves_[k];
         const GaborNoiseParameters& parameters = octave.noise.parameters();
         const GaborFilter filter(parameters.bandwidth, footprint);
         const float fade = octave_fade(1 / filter.amplitude);
@@ -107,22 +109,31 @@ Rgb GaborTexture::synthesize(const Symmetric2& footprint, const TangentFrame& fr
             const double retained = fade > 0 ? fade * fade * gabor_retained_variance(parameters, frame, filter) : 0.0;
             for (int c = 0; c < 3; ++c) dropped[c] += (1 - retained) * octave.weight[c] * octave.weight[c];
         }
-        if (fade == 0) continue;
-        float value[GaborNoise::max_channels];
-        octave_noise(octave.noise, filter, value);
-        const int channels = parameters.channels;
-        for (int c = 0; c < 3; ++c) kept[c] += fade * octave.weight[c] * value[channels == 1 ? 0 : c];
+        if (fade > 0) plan.octaves.push_back({k, filter, fade});
     }
-    std::array<double, 3> z{}, dropped_sigma{};
-    for (int c = 0; c < 3; ++c) {
-        if (!(sigma_m_[c] > 0)) continue;
-        z[c] = kept[c] / sigma_m_[c];
-        dropped_sigma[c] = std::sqrt(std::max(0.0, dropped[c])) / sigma_m_[c];
-    }
-    return colour_.to_rgb(z, dropped_sigma);
+    for (int c = 0; c < 3; ++c)
+        if (sigma_m_[c] > 0) plan.dropped_sigma[c] = std::sqrt(std::max(0.0, dropped[c])) / sigma_m_[c];
+    return plan;
 }
 
 namespace {
+
+/// Rows of pixels summed together before their colour mapping.
+constexpr std::size_t band_rows = 16;
+
+struct SynthesisScratch {
+    std::vector<double> kept;
+    std::vector<float> value;
+    std::vector<double> x, y;
+};
+
+/// Kept per thread: a render's row band or a plugin tile allocates nothing once its thread has
+/// seen one as large.
+SynthesisScratch& synthesis_scratch()
+{
+    thread_local SynthesisScratch scratch;
+    return scratch;
+}
 
 /// The blur a footprint adds to the texture: the pixel filter's covariance (exemplar pixels²)
 /// less the exemplar pixel's own, which the photo — and so the fitted octaves — already holds.
@@ -133,27 +144,98 @@ Symmetric2 render_blur(const Symmetric2& pixel_filter)
 
 }  // namespace
 
+template <class GridNoise>
+void GaborTexture::synthesize(const Plan& plan, const Grid& grid, const RgbOutput& out, const GridNoise& grid_noise) const
+{
+    SynthesisScratch& scratch = synthesis_scratch();
+    const std::size_t band = grid.nx * std::min(band_rows, grid.ny);
+    scratch.kept.resize(3 * band);
+    scratch.value.resize(3 * band);
+    double* const kept[3] = {&scratch.kept[0], &scratch.kept[band], &scratch.kept[2 * band]};
+    float* const value[3] = {&scratch.value[0], &scratch.value[band], &scratch.value[2 * band]};
+    for (std::size_t first_row = 0; first_row < grid.ny; first_row += band_rows) {
+        const std::size_t rows = std::min(band_rows, grid.ny - first_row), pixels = rows * grid.nx;
+        for (int c = 0; c < 3; ++c) std::fill(kept[c], kept[c] + pixels, 0.0);
+        // m_c = Σ_k fade_k · w_ck · n_k, octave after octave: the same order for every pixel.
+        for (const Plan::Kept& planned : plan.octaves) {
+            const Octave& octave = octaves_[planned.octave];
+            grid_noise(octave.noise, planned.filter, grid.x, grid.nx, grid.y + first_row, rows, value);
+            const bool shared = octave.noise.parameters().channels == 1;  // rgb-shared: one noise
+            for (int c = 0; c < 3; ++c) {
+                const float* v = value[shared ? 0 : c];
+                for (std::size_t p = 0; p < pixels; ++p) kept[c][p] += planned.fade * octave.weight[c] * v[p];
+            }
+        }
+        colour_.to_rgb({kept[0], kept[1], kept[2]}, 1.0, plan.dropped_sigma, out, first_row * grid.nx, pixels);
+    }
+}
+
+void GaborTexture::eval_2d(const Footprint2D& footprint, const Grid& grid, const RgbOutput& out) const
+{
+    const Plan octaves = plan(render_blur(filter_covariance(footprint, description().pixels_per_unit)), TangentFrame{});
+    synthesize(octaves, grid, out,
+               [](const GaborNoise& noise, const GaborFilter& filter, const double* x, std::size_t nx, const double* y,
+                  std::size_t ny, float* const* value) { noise.eval_2d_grid(x, nx, y, ny, filter, value); });
+}
+
+void GaborTexture::eval_sliced(const SurfacePoint& shared, const Grid& grid, const RgbOutput& out) const
+{
+    const TangentFrame frame = tangent_frame(shared.n, shared.dpdx);
+    // The screen-to-tangent Jacobian: the footprint's derivatives in the (t, b) frame (paper §5).
+    const Symmetric2 covariance = render_blur(filter_covariance(tangent_footprint(frame, shared), description().pixels_per_unit));
+    synthesize(plan(covariance, frame), grid, out,
+               [&](const GaborNoise& noise, const GaborFilter& filter, const double* x, std::size_t nx, const double* y,
+                   std::size_t ny, float* const* value) { noise.eval_sliced_grid(x, nx, y, ny, grid.z, frame, filter, value); });
+}
+
 Rgb GaborTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 {
     const double ppu = description().pixels_per_unit;
-    const Symmetric2 covariance =
-        render_blur(filter_covariance(footprint, ppu));
     const double x = uv[0] * ppu, y = uv[1] * ppu;
-    return synthesize(covariance, TangentFrame{}, [&](const GaborNoise& noise, const GaborFilter& filter, float* value) {
-        noise.eval_2d(x, y, filter, value);
-    });
+    Rgb rgb;
+    eval_2d(footprint, {&x, 1, &y, 1, 0}, RgbOutput::interleaved(rgb.data()));
+    return rgb;
 }
 
 Rgb GaborTexture::eval_solid(const SurfacePoint& point) const
 {
     const double ppu = description().pixels_per_unit;
-    const TangentFrame frame = tangent_frame(point.n, point.dpdx);
-    // The screen-to-tangent Jacobian: the footprint's derivatives in the (t, b) frame (paper §5).
-    const Symmetric2 covariance = render_blur(filter_covariance(tangent_footprint(frame, point), ppu));
-    const Vec3 p{point.p[0] * ppu, point.p[1] * ppu, point.p[2] * ppu};
-    return synthesize(covariance, frame, [&](const GaborNoise& noise, const GaborFilter& filter, float* value) {
-        noise.eval_sliced(p, frame, filter, value);
-    });
+    const double x = point.p[0] * ppu, y = point.p[1] * ppu;
+    Rgb rgb;
+    eval_sliced(point, {&x, 1, &y, 1, point.p[2] * ppu}, RgbOutput::interleaved(rgb.data()));
+    return rgb;
+}
+
+namespace {
+
+/// A region's pixel centres in exemplar pixels, as eval() computes them.
+void region_positions(const RasterRegion& region, double ppu, std::vector<double>& x, std::vector<double>& y)
+{
+    x.resize(std::size_t(region.width)), y.resize(std::size_t(region.height));
+    for (int i = 0; i < region.width; ++i) x[std::size_t(i)] = region.u(i) * ppu;
+    for (int j = 0; j < region.height; ++j) y[std::size_t(j)] = region.v(j) * ppu;
+}
+
+}  // namespace
+
+void GaborTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
+{
+    if (region.width <= 0 || region.height <= 0) return;
+    SynthesisScratch& scratch = synthesis_scratch();
+    region_positions(region, description().pixels_per_unit, scratch.x, scratch.y);
+    // (synthesize() uses the scratch's other arrays.)
+    eval_2d(region.footprint, {scratch.x.data(), scratch.x.size(), scratch.y.data(), scratch.y.size(), 0}, out);
+}
+
+void GaborTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
+{
+    if (region.plane.width <= 0 || region.plane.height <= 0) return;
+    const double ppu = description().pixels_per_unit;
+    SynthesisScratch& scratch = synthesis_scratch();
+    region_positions(region.plane, ppu, scratch.x, scratch.y);
+    // Every pixel has the plane's normal and footprint (SolidRegion::point), so one frame.
+    eval_sliced(region.point(0, 0), {scratch.x.data(), scratch.x.size(), scratch.y.data(), scratch.y.size(), region.w * ppu},
+                out);
 }
 
 }  // namespace stochtex

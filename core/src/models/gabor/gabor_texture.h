@@ -46,10 +46,44 @@ public:
     Rgb eval_solid(const SurfacePoint& point) const override;
     Rgb mean() const override { return colour_.mean(); }
 
+    /// eval() / eval_solid() at every pixel: the octaves' filters and fades once per region, the
+    /// noises on grids of pixels (GaborNoise::eval_2d_grid, eval_sliced_grid), the colour mapping
+    /// batched. Bit-identical to the point methods (the same code with one point).
+    void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
+    void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
+
 private:
     GaborTexture(const TextureDescription& description, const Vec2* period);
-    template <class OctaveNoise>
-    Rgb synthesize(const Symmetric2& footprint, const TangentFrame& frame, const OctaveNoise& octave_noise) const;
+
+    /// What a footprint decides, shared by every pixel that has it: the filter and fade of each
+    /// octave that is not faded out, and the σ (units of σ_M) of what filtering removed.
+    struct Plan {
+        struct Kept {
+            std::size_t octave;
+            GaborFilter filter;
+            float fade;
+        };
+        std::vector<Kept> octaves;
+        std::array<double, 3> dropped_sigma{};
+    };
+    Plan plan(const Symmetric2& footprint, const TangentFrame& frame) const;
+    /// Pixel centres (x[i], y[j][, z]) in exemplar pixels, i < nx, j < ny: item j·nx + i.
+    struct Grid {
+        const double* x;
+        std::size_t nx;
+        const double* y;
+        std::size_t ny;
+        double z;
+    };
+    /// The grid's colours, band of rows by band of rows: grid_noise(noise, filter, x, nx, y, ny,
+    /// values) evaluates one octave's noise on a band into values[c][·].
+    template <class GridNoise>
+    void synthesize(const Plan& plan, const Grid& grid, const RgbOutput& out, const GridNoise& grid_noise) const;
+    /// The 2D texture on a grid, all with one footprint.
+    void eval_2d(const Footprint2D& footprint, const Grid& grid, const RgbOutput& out) const;
+    /// The solid texture on a grid of points of one plane, all with the normal and footprint of
+    /// `shared` (its position is not read).
+    void eval_sliced(const SurfacePoint& shared, const Grid& grid, const RgbOutput& out) const;
 
     struct Octave {
         GaborNoise noise;

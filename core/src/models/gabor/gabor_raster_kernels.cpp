@@ -1,0 +1,218 @@
+// Highway compiles this file once per instruction set (foreach_target.h); sum_row picks the best
+// one the CPU has. Only Mul, Add and Sub (never MulAdd) and bit operations, lane-wise: the same
+// IEEE results on every target, so values do not depend on the CPU.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "models/gabor/gabor_raster_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "models/gabor/gabor_raster_kernels.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace stochtex::gabor_raster::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// e^x for x in [−87, 0]: numerics/fast_math.h's polynomial (relative error 2e-7), lane-wise.
+template <class DF, class V>
+HWY_INLINE V FastExp(DF df, V x)
+{
+    const hn::RebindToSigned<DF> di;
+    const auto y = hn::Mul(x, hn::Set(df, 1.44269504f));
+    const auto shifted = hn::Add(y, hn::Set(df, 12582912.0f));  // round to nearest: 1.5·2^23
+    const auto rounded = hn::Sub(shifted, hn::Set(df, 12582912.0f));
+    const auto f = hn::Sub(y, rounded);
+    auto p = hn::Set(df, 1.5403530e-4f);
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 1.3333558e-3f));
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 9.6181291e-3f));
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 5.5504109e-2f));
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 2.4022651e-1f));
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 6.9314718e-1f));
+    p = hn::Add(hn::Mul(p, f), hn::Set(df, 1.0f));
+    const auto bits = hn::ShiftLeft<23>(hn::Sub(hn::BitCast(di, shifted), hn::Set(di, 0x4b400000 - 127)));
+    return hn::Mul(p, hn::BitCast(df, bits));
+}
+
+/// sin(2π·turns), cos(2π·turns) for |turns| < 2^20: fast_math.h's polynomials (absolute error
+/// 3e-7): the nearest quarter turn, the remainder in [−π/4, π/4], a rotation by the quadrant.
+template <class DF, class V>
+HWY_INLINE void FastSinCosTurns(DF df, V turns, V& sine, V& cosine)
+{
+    const hn::RebindToUnsigned<DF> du;
+    const auto shifted = hn::Add(hn::Mul(turns, hn::Set(df, 4.0f)), hn::Set(df, 12582912.0f));
+    const auto q = hn::Sub(shifted, hn::Set(df, 12582912.0f));
+    const auto x = hn::Mul(hn::Sub(turns, hn::Mul(q, hn::Set(df, 0.25f))), hn::Set(df, 6.28318531f));
+    const auto x2 = hn::Mul(x, x);
+    auto s = hn::Add(hn::Set(df, -1.9841270e-4f), hn::Mul(x2, hn::Set(df, 2.7557319e-6f)));
+    s = hn::Add(hn::Set(df, 8.3333333e-3f), hn::Mul(x2, s));
+    s = hn::Add(hn::Set(df, -1.6666667e-1f), hn::Mul(x2, s));
+    s = hn::Mul(x, hn::Add(hn::Set(df, 1.0f), hn::Mul(x2, s)));
+    auto c = hn::Add(hn::Set(df, -1.3888889e-3f), hn::Mul(x2, hn::Set(df, 2.4801587e-5f)));
+    c = hn::Add(hn::Set(df, 4.1666667e-2f), hn::Mul(x2, c));
+    c = hn::Add(hn::Set(df, -0.5f), hn::Mul(x2, c));
+    c = hn::Add(hn::Set(df, 1.0f), hn::Mul(x2, c));
+    // Odd quadrants swap sine and cosine; quadrants 2, 3 negate the sine, 1, 2 the cosine.
+    const auto quadrant = hn::BitCast(du, shifted);
+    const auto one = hn::Set(du, 1u), two = hn::Set(du, 2u);
+    const auto swap = hn::Eq(hn::And(quadrant, one), one);
+    const auto s_bits = hn::BitCast(du, s), c_bits = hn::BitCast(du, c);
+    const auto sine_bits = hn::Xor(hn::IfThenElse(swap, c_bits, s_bits), hn::ShiftLeft<30>(hn::And(quadrant, two)));
+    const auto cosine_bits =
+        hn::Xor(hn::IfThenElse(swap, s_bits, c_bits), hn::ShiftLeft<30>(hn::And(hn::Add(quadrant, one), two)));
+    sine = hn::BitCast(df, sine_bits);
+    cosine = hn::BitCast(df, cosine_bits);
+}
+
+template <class DF>
+struct KernelAt {
+    hn::Vec<DF> q, turns;
+    hn::Mask<DF> keep;
+};
+
+template <bool Solid, int Channels>
+void SumRowOf(const RowInput& in, const double* x, std::size_t count, float* const out[3])
+{
+    // One double lane per point (positions are doubles: d = p − c must not lose the point's
+    // precision far from the origin), the kernel itself in float on as many lanes.
+    const hn::ScalableTag<double> dd;
+    const hn::Rebind<float, decltype(dd)> df;
+#if HWY_TARGET != HWY_SCALAR
+    const hn::Twice<decltype(df)> df2;
+#endif
+    using Kernel = KernelAt<decltype(df)>;
+    const std::size_t lanes = hn::Lanes(dd);
+    const CellImpulses& cells = *in.cells;
+    const Envelope& envelope = in.envelope;
+    const auto limit = hn::Set(df, envelope.limit), exp_floor = hn::Set(df, -87.0f);
+    const auto e0x = hn::Set(df, envelope.e[0][0]), e1x = hn::Set(df, envelope.e[1][0]), e2x = hn::Set(df, envelope.e[2][0]);
+    const double inverse_cell = 1 / in.cell_x;
+    HWY_ALIGN double lane_x[HWY_MAX_BYTES / sizeof(double)];
+    HWY_ALIGN float result[HWY_MAX_BYTES / sizeof(float)];
+
+    for (std::size_t start = 0; start < count; start += lanes) {
+        const std::size_t n = std::min(lanes, count - start);
+        // Unused lanes repeat the last point (evaluated, not stored).
+        for (std::size_t k = 0; k < lanes; ++k) lane_x[k] = x[start + std::min(k, n - 1)];
+        const double x_min = *std::min_element(lane_x, lane_x + n), x_max = *std::max_element(lane_x, lane_x + n);
+        const auto px = hn::Load(dd, lane_x);
+        auto sum0 = hn::Zero(dd), sum1 = hn::Zero(dd), sum2 = hn::Zero(dd);
+        // Cell m's q, turns and support mask at the lanes' points.
+        auto kernel = [&](std::size_t m) {
+            Kernel k;
+            const auto dx = hn::DemoteTo(df, hn::Sub(px, hn::Set(dd, cells.x[m])));
+            const float dy = float(in.y - cells.y[m]);
+            // q and the turns: the lane's x part plus the cell's (y, z) part.
+            if constexpr (Solid) {
+                const float dz = float(in.z - cells.z[m]);
+                const auto u0 = hn::Add(hn::Mul(e0x, dx), hn::Set(df, envelope.e[0][1] * dy + envelope.e[0][2] * dz));
+                const auto u1 = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy + envelope.e[1][2] * dz));
+                const auto u2 = hn::Add(hn::Mul(e2x, dx), hn::Set(df, envelope.e[2][1] * dy + envelope.e[2][2] * dz));
+                k.q = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
+                k.turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy + cells.wz[m] * dz));
+            } else {
+                const auto u = hn::Add(hn::Mul(e1x, dx), hn::Set(df, envelope.e[1][1] * dy));
+                const float v = envelope.e[2][1] * dy;
+                k.q = hn::Add(hn::Mul(u, u), hn::Set(df, v * v));
+                k.turns = hn::Add(hn::Mul(hn::Set(df, cells.wx[m]), dx), hn::Set(df, cells.wy[m] * dy));
+            }
+            k.keep = hn::Le(k.q, limit);
+            return k;
+        };
+        // Cell m's kernel added to the sums, from its envelope (zero where the lane is outside
+        // the support) and sin/cos.
+        auto add = [&](std::size_t m, const Kernel& k, hn::Vec<decltype(df)> envelope_value, hn::Vec<decltype(df)> s,
+                       hn::Vec<decltype(df)> c) {
+            envelope_value = hn::IfThenElseZero(k.keep, envelope_value);
+            // cos(2πT + φ) = cos 2πT cos φ − sin 2πT sin φ: one sin/cos for every channel.
+            const auto es = hn::Mul(envelope_value, s), ec = hn::Mul(envelope_value, c);
+            sum0 = hn::Add(sum0, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[0][m])),
+                                                           hn::Mul(es, hn::Set(df, cells.sin_phase[0][m])))));
+            if constexpr (Channels == 3) {
+                sum1 = hn::Add(sum1, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[1][m])),
+                                                               hn::Mul(es, hn::Set(df, cells.sin_phase[1][m])))));
+                sum2 = hn::Add(sum2, hn::PromoteTo(dd, hn::Sub(hn::Mul(ec, hn::Set(df, cells.cos_phase[2][m])),
+                                                               hn::Mul(es, hn::Set(df, cells.sin_phase[2][m])))));
+            }
+        };
+        auto exponent_of = [&](std::size_t m, const Kernel& k) {
+            return hn::Max(hn::Sub(hn::Set(df, cells.log_amplitude[m]), k.q), exp_floor);
+        };
+        for (std::size_t r = 0; r < in.row_count; ++r) {
+            const CellRow& row = in.rows[r];
+            const std::int64_t first = row.every_cell ? 0 : std::max<std::int64_t>(std::int64_t(std::floor((x_min + row.lo) * inverse_cell)) - row.i_first, 0);
+            const std::int64_t last = row.every_cell ? std::int64_t(row.count) - 1
+                                                     : std::min<std::int64_t>(std::int64_t(std::floor((x_max + row.hi) * inverse_cell)) - row.i_first,
+                                                                              std::int64_t(row.count) - 1);
+            // Two cells at a time: their kernels are independent chains of arithmetic that the
+            // core overlaps; their values still enter the sums one after the other, in order.
+            for (std::int64_t i = first; i <= last; i += 2) {
+                const std::size_t m = row.first + std::size_t(i);
+                const bool pair = i + 1 <= last;
+                Kernel k0 = kernel(m), k1 = pair ? kernel(m + 1) : k0;
+                const bool any0 = !hn::AllFalse(df, k0.keep), any1 = pair && !hn::AllFalse(df, k1.keep);
+                if (!any0 && !any1) continue;
+#if HWY_TARGET == HWY_SCALAR
+                // One lane: no wider vector to pair the cells in.
+                for (int half = 0; half < 2; ++half) {
+                    if (!(half ? any1 : any0)) continue;
+                    const Kernel& k = half ? k1 : k0;
+                    hn::Vec<decltype(df)> s, c;
+                    FastSinCosTurns(df, k.turns, s, c);
+                    add(m + std::size_t(half), k, FastExp(df, exponent_of(m + std::size_t(half), k)), s, c);
+                }
+#else
+                // The two cells' exp and sin/cos on one vector of twice the lanes (half the
+                // instructions: the polynomials' latency is what bounds this loop).
+                const auto envelope_values = FastExp(df2, hn::Combine(df2, exponent_of(m + pair, k1), exponent_of(m, k0)));
+                hn::Vec<decltype(df2)> s, c;
+                FastSinCosTurns(df2, hn::Combine(df2, k1.turns, k0.turns), s, c);
+                if (any0) add(m, k0, hn::LowerHalf(df, envelope_values), hn::LowerHalf(df, s), hn::LowerHalf(df, c));
+                if (any1) add(m + 1, k1, hn::UpperHalf(df, envelope_values), hn::UpperHalf(df, s), hn::UpperHalf(df, c));
+#endif
+            }
+        }
+        const auto gain = hn::Set(dd, in.gain);
+        const hn::Vec<decltype(dd)> sums[3] = {sum0, sum1, sum2};
+        for (int ch = 0; ch < Channels; ++ch) {
+            hn::Store(hn::DemoteTo(df, hn::Mul(sums[ch], gain)), df, result);
+            std::copy(result, result + n, out[ch] + start);
+        }
+    }
+}
+
+void SumRow(const RowInput& in, const double* x, std::size_t count, float* const out[3])
+{
+    if (in.solid) {
+        if (in.channels == 3) SumRowOf<true, 3>(in, x, count, out);
+        else SumRowOf<true, 1>(in, x, count, out);
+    } else {
+        if (in.channels == 3) SumRowOf<false, 3>(in, x, count, out);
+        else SumRowOf<false, 1>(in, x, count, out);
+    }
+}
+
+}  // namespace stochtex::gabor_raster::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stochtex::gabor_raster {
+
+HWY_EXPORT(SumRow);
+
+void CellImpulses::clear()
+{
+    for (std::vector<double>* v : {&x, &y, &z}) v->clear();
+    for (std::vector<float>* v : {&wx, &wy, &wz, &log_amplitude}) v->clear();
+    for (int c = 0; c < 3; ++c) cos_phase[c].clear(), sin_phase[c].clear();
+}
+
+void sum_row(const RowInput& input, const double* x, std::size_t count, float* const out[3])
+{
+    HWY_DYNAMIC_DISPATCH(SumRow)(input, x, count, out);
+}
+
+}  // namespace stochtex::gabor_raster
+#endif
