@@ -59,7 +59,7 @@ public:
                       float(eta - (lattice_.origin[1] + double(j) * lattice_.spacing[1])), out);
             return;
         }
-        sum_windows(lattice_, LrpNormalisation::partition, xi, eta,
+        sum_windows<LrpTermSum::direct>(lattice_, LrpNormalisation::partition, xi, eta,
                     [&](std::int64_t i, std::int64_t j) {
                         return terms_of(int(lattice_.wrapped(1, j) * blocks_per_side_ + lattice_.wrapped(0, i)));
                     },
