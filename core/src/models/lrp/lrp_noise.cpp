@@ -55,6 +55,7 @@ void LrpTerms::pad()
 
 void sum_terms(const LrpTermView& terms, float dx, float dy, float out[3])
 {
+    // lrp_raster::sum_terms_at repeats these operations lane by lane: change both or neither.
     constexpr int lanes = LrpTerms::lanes;
     float sum[3][lanes] = {};
     const float* fx = terms.fx();

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 
+#include "models/lrp/lrp_noise.h"
 #include "models/lrp/lrp_raster_kernels.h"
 #include "models/lrp/lrp_window.h"
 
@@ -136,6 +137,35 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
     }
 }
 
+void SumTermsAt(const LrpTermView& terms, const float* dx, const float* dy, std::size_t count, float* const out[3])
+{
+    const hn::ScalableTag<float> d;
+    const std::size_t lanes = hn::Lanes(d);
+    const auto zero = hn::Zero(d);
+    const float* fx = terms.fx();
+    const float* fy = terms.fy();
+    const float* re[3] = {terms.re(0), terms.re(1), terms.re(2)};
+    const float* im[3] = {terms.im(0), terms.im(1), terms.im(2)};
+    for (std::size_t k = 0; k < count; k += lanes) {
+        const auto vdx = hn::LoadU(d, dx + k), vdy = hn::LoadU(d, dy + k);
+        hn::Vec<decltype(d)> partial[4][3];
+        for (auto& lane : partial)
+            for (auto& channel : lane) channel = zero;
+        for (int t = 0; t < terms.count; t += 4)
+            for (int l = 0; l < 4; ++l) {
+                const std::size_t term = std::size_t(t + l);
+                const auto turns = hn::Add(hn::Mul(hn::Set(d, fx[term]), vdx), hn::Mul(hn::Set(d, fy[term]), vdy));
+                hn::Vec<decltype(d)> sine, cosine;
+                SinCosTurns(d, turns, sine, cosine);
+                for (int c = 0; c < 3; ++c)
+                    partial[l][c] = hn::Add(partial[l][c], hn::Sub(hn::Mul(hn::Set(d, re[c][term]), cosine),
+                                                                   hn::Mul(hn::Set(d, im[c][term]), sine)));
+            }
+        for (int c = 0; c < 3; ++c)
+            hn::StoreU(hn::Add(hn::Add(partial[0][c], partial[1][c]), hn::Add(partial[2][c], partial[3][c])), d, out[c] + k);
+    }
+}
+
 void AccumulateWindowRow(const WindowRow& row)
 {
     WithWidthFor(row.count, [&](auto d) { AccumulateWindowRowOf(d, row); });
@@ -150,6 +180,7 @@ namespace stochtex::lrp_raster {
 HWY_EXPORT(SinCosOfProducts);
 HWY_EXPORT(AccumulateWindowRow);
 HWY_EXPORT(RowFactors);
+HWY_EXPORT(SumTermsAt);
 
 void sincos_of_products(float a, const float* b, std::size_t count, float* sine, float* cosine)
 {
@@ -160,6 +191,11 @@ void row_factors(float dy, const float* fy, const float* const re[3], const floa
                  float* q)
 {
     HWY_DYNAMIC_DISPATCH(RowFactors)(dy, fy, re, im, terms, p, q);
+}
+
+void sum_terms_at(const LrpTermView& terms, const float* dx, const float* dy, std::size_t count, float* const out[3])
+{
+    HWY_DYNAMIC_DISPATCH(SumTermsAt)(terms, dx, dy, count, out);
 }
 
 void accumulate_window_row(const WindowRow& row)

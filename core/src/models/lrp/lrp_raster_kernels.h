@@ -9,6 +9,10 @@
 
 #include <cstddef>
 
+namespace stochtex {
+struct LrpTermView;
+}
+
 namespace stochtex::lrp_raster {
 
 /// How many floats past `count` the kernels may read and write (callers pad their buffers).
@@ -46,5 +50,10 @@ struct WindowRow {
     float* weight_squared = nullptr;
 };
 void accumulate_window_row(const WindowRow& row);
+
+/// sum_terms (the direct form: sin/cos of fx·dx + fy·dy, four partial sums t mod 4) at each of
+/// `count` points (dx[k], dy[k]) of one set of terms: out[c][k]. Reads and writes up to the
+/// padding past `count`.
+void sum_terms_at(const LrpTermView& terms, const float* dx, const float* dy, std::size_t count, float* const out[3]);
 
 }  // namespace stochtex::lrp_raster

@@ -3,6 +3,7 @@
 
 #include "models/lrp/lrp_parameters.h"
 #include "models/lrp/lrp_raster.h"
+#include "models/lrp/lrp_raster_kernels.h"
 #include "numerics/random.h"
 
 #include <algorithm>
@@ -136,6 +137,8 @@ struct RegionScratch {
     std::vector<double> x, y;
     std::vector<float> m[3], value[3];
     std::vector<float> turbulence[2][2];  // component, stratum: channel 0 per pixel
+    std::vector<LrpStructureSamples> samples;  // per pixel
+    std::vector<float> dx, dy, sums[3];        // per structure sample
 };
 
 RegionScratch& region_scratch()
@@ -208,19 +211,50 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
         if (cache_blocks)
             blocks.fill(0, 0, structure_->block_count(), 1,
                         [&](std::int64_t b, std::int64_t, LrpTerms& terms) { structure_->draw_block(int(b), filter, terms); });
-        for (std::size_t p = 0; p < pixels; ++p) {
-            const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
-            float structure[3];
-            if (cache_blocks)
-                structure_->eval_with(
-                    x, y, [&](int b) { return blocks.at(b, 0); },
-                    [&](int component, std::size_t k, double, double, float out[3]) {
-                        out[0] = s.turbulence[component][k][p], out[1] = out[2] = 0;
-                    },
-                    structure);
-            else
-                structure_->eval(x, y, filter, structure);
-            for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+        const auto turbulence_at = [&](std::size_t p) {
+            return [&s, p](int component, std::size_t k, double, double, float out[3]) {
+                out[0] = s.turbulence[component][k][p], out[1] = out[2] = 0;
+            };
+        };
+        if (cache_blocks && structure_->single_block()) {
+            // One block: every sample is sum_terms of the same terms, so the samples of the whole
+            // region go through the SIMD kernel at once (pixels as lanes), then combine as
+            // eval_with does.
+            s.samples.resize(pixels);
+            s.dx.clear(), s.dy.clear();
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                s.samples[p] = structure_->samples(x, y, turbulence_at(p));
+                for (int k = 0; k < s.samples[p].count; ++k) {
+                    float dx, dy;
+                    structure_->nearest_offset(s.samples[p].sample[k].xi, s.samples[p].sample[k].eta, dx, dy);
+                    s.dx.push_back(dx), s.dy.push_back(dy);
+                }
+            }
+            const std::size_t n = s.dx.size();
+            s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
+            for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
+            float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
+            lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
+            std::size_t next = 0;
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const LrpStructureSamples& samples = s.samples[p];
+                float structure[3] = {0, 0, 0};
+                for (int k = 0; k < samples.count; ++k, ++next)
+                    for (int c = 0; c < 3; ++c)
+                        structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
+                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+            }
+        } else {
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                float structure[3];
+                if (cache_blocks)
+                    structure_->eval_with(x, y, [&](int b) { return blocks.at(b, 0); }, turbulence_at(p), structure);
+                else
+                    structure_->eval(x, y, filter, structure);
+                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+            }
         }
     }
     for (std::size_t p = 0; p < pixels; ++p) {
