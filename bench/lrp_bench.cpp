@@ -7,6 +7,7 @@
 //   PointEval2D/lrp/...        the same renders through eval() per pixel (the scalar reference
 //                              the raster is bit-identical to), one iteration each
 //   Render2D/wavelet/...       the same raster with the wavelet model of the same photo
+//   Region/lrp/.../rows:R      eval_region over the same raster in 512×R bands, one thread
 // Counters: Mpix/s (wall) and cpu_ns/px (CPU time of all the process's threads per pixel, the
 // steadier figure on a shared machine).
 //
@@ -34,6 +35,7 @@
 
 #include "median_reporter.h"
 #include "photo_crop.h"
+#include "point_by_point.h"
 
 #include <chrono>
 #include <ctime>
@@ -93,20 +95,6 @@ void bm_analyze(benchmark::State& state, const Image* photo)
     state.SetLabel(std::to_string(photo->width) + "x" + std::to_string(photo->height) + ", J=50 L=8 r=0.1, goal<300ms");
 }
 
-/// A texture through its point method only: Texture's default eval_region calls eval() per
-/// pixel. For lrp that is the scalar reference path the raster is bit-identical to (each window's
-/// terms drawn and summed per pixel, as before the separable raster), measured in the same run.
-class PointPath final : public Texture {
-public:
-    explicit PointPath(const Texture& texture) : Texture(texture.description()), texture_(texture) {}
-    Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override { return texture_.eval(uv, footprint); }
-    Rgb eval_solid(const SurfacePoint& point) const override { return texture_.eval_solid(point); }
-    Rgb mean() const override { return texture_.mean(); }
-
-private:
-    const Texture& texture_;
-};
-
 double process_cpu_seconds()
 {
     timespec t{};
@@ -121,7 +109,8 @@ void bm_render(benchmark::State& state, const Model* model, int threads, bool po
     settings.units_per_pixel = 1.0 / model->description.pixels_per_unit;
     settings.origin_u = 0.25, settings.origin_v = 0.5;
     settings.threads = threads;
-    const PointPath point(*model->texture);
+    // The point path: eval() per pixel, for lrp the scalar reference the raster is bit-identical to.
+    const stochtex::bench::PointByPoint point(*model->texture);
     const Texture& texture = point_path ? static_cast<const Texture&>(point) : *model->texture;
     const double cpu_start = process_cpu_seconds();
     for (auto _ : state) {
@@ -134,6 +123,30 @@ void bm_render(benchmark::State& state, const Model* model, int threads, bool po
     state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
     state.SetLabel(std::string(point_path ? "eval() per pixel" : "eval_region") + ", 2D filtered, full colour, threads=" +
                    std::to_string(threads));
+}
+
+/// eval_region straight over the 512² raster in bands of `rows` rows, one thread: what a region's
+/// height costs the lrp raster (each window's terms and column factors are made once per region;
+/// render() hands out bands of 8 rows, the plugin 64² tiles).
+void bm_region(benchmark::State& state, const Model* model, int rows)
+{
+    RasterRegion region;
+    region.origin_u = 0.25, region.origin_v = 0.5;
+    region.du = region.dv = 1.0 / model->description.pixels_per_unit;
+    region.footprint = Footprint2D{region.du, 0, 0, region.dv};
+    region.width = raster_size;
+    std::vector<float> rgb(std::size_t(raster_size) * raster_size * 3);
+    const double cpu_start = process_cpu_seconds();
+    for (auto _ : state)
+        for (int y0 = 0; y0 < raster_size; y0 += rows) {
+            region.y0 = y0, region.height = std::min(rows, raster_size - y0);
+            model->texture->eval_region(region, &rgb[std::size_t(y0) * raster_size * 3]);
+            benchmark::DoNotOptimize(rgb.data());
+        }
+    const double pixels = double(state.iterations()) * raster_size * raster_size;
+    state.counters["Mpix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsRate);
+    state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
+    state.SetLabel("eval_region in 512x" + std::to_string(rows) + " bands, 1 thread, filtered, full colour");
 }
 
 // ---- The paper's Fig. 10 comparison --------------------------------------------------------
@@ -231,7 +244,9 @@ public:
         std::printf("\nlrp raster (eval_region) vs the point path (eval() per pixel, the reference), same run:\n");
         for (const auto& [name, entry] : medians()) {
             if (name.rfind("Render2D/lrp", 0) != 0) continue;
-            const std::string point = "PointEval2D/" + name.substr(std::string("Render2D/").size());
+            // The point path runs one iteration per repetition: its name says so.
+            std::string point = "PointEval2D/" + name.substr(std::string("Render2D/").size());
+            point.insert(point.rfind('/') + 1, "iterations:1/");
             const auto reference = medians().find(point);
             if (reference != medians().end() && reference->second.rate > 0)
                 std::printf("  %-44s %6.2f vs %6.3f Mpix/s = %.1fx\n", name.c_str(), entry.rate, reference->second.rate,
@@ -287,6 +302,13 @@ int main(int argc, char** argv)
                     ->UseRealTime()
                     ->Iterations(1);
         }
+    for (const Model& model : models)
+        if (model.name.rfind("lrp", 0) == 0)
+            for (int rows : {8, 64})
+                benchmark::RegisterBenchmark(("Region/" + model.name + "/rows:" + std::to_string(rows)).c_str(), bm_region,
+                                             &model, rows)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
     ComparisonReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::Shutdown();
