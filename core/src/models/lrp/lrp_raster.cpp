@@ -77,12 +77,15 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
             s.dx.resize(std::max(s.dx.size(), columns));
             s.rx2.resize(std::max(s.rx2.size(), columns));
             for (std::size_t k = 0; k < columns; ++k) {
-                if (k < n) {
-                    const float dx = float(grid.x[std::size_t(k0) + k] - xi);
+                const double x = k < n ? grid.x[std::size_t(k0) + k] : 0;
+                // sum_windows takes the 3×3 points around the nearest one, exactly: a column whose
+                // nearest lattice column is farther gets weight 0 (as does the padding).
+                if (k < n && std::abs(lattice.nearest(0, x) - i) <= 1) {
+                    const float dx = float(x - xi);
                     const float rx = dx * lattice.inverse_spacing[0];
                     s.dx[k] = dx, s.rx2[k] = rx * rx;
                 } else {
-                    s.dx[k] = 0, s.rx2[k] = 2 * extent;  // past the window: weight 0
+                    s.dx[k] = 0, s.rx2[k] = 2 * extent;
                 }
             }
             const std::size_t table = columns * std::size_t(view.live);
@@ -98,7 +101,8 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
             for (int r = r0; r < r1; ++r) {
                 const float dy = float(grid.y[r] - yj);
                 const float ry = dy * lattice.inverse_spacing[1];
-                if (!(ry * ry < extent)) continue;  // every weight of the row is 0
+                if (!(ry * ry < extent)) continue;                        // every weight of the row is 0
+                if (std::abs(lattice.nearest(1, grid.y[r]) - j) > 1) continue;  // not among the row's 3×3
                 // The row's chord of the window, rx² + ry² < 2.25 (margins for float rounding),
                 // where the box is wide enough for the search to pay.
                 int c0 = 0, c1 = k1 - k0;
