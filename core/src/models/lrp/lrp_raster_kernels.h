@@ -2,9 +2,10 @@
 // the best instruction set of the CPU at run time). Pixels are the lanes.
 //
 // Each kernel performs, lane by lane, exactly the IEEE operations of the scalar code it stands
-// for (fast_sincos_turns, sum_terms_separable, sum_windows), in the same order and without fused
-// multiply-add (the core builds with -ffp-contract=off), so the raster is bit-identical to
-// LrpStratumNoise::eval on every target.
+// for (fast_sincos_turns, sum_terms_separable, sum_windows, sum_terms), in the same order and
+// without fused multiply-add (the core builds with -ffp-contract=off), so the raster is
+// bit-identical to LrpStratumNoise::eval and LrpStructureNoise::eval on every target, at any
+// vector width.
 #pragma once
 
 #include <cstddef>
