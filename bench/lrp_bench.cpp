@@ -4,7 +4,12 @@
 //   Analyze/lrp/<n>            analysis of an n² photo crop (gravel.png, else the committed
 //                              exemplar), default options (J = 50, L = 8, r = 0.1); goal < 300 ms at 512²
 //   Render2D/lrp/<J,L,r>/...   512² filtered renders through stochtex::render(), full colour, 1 and 2 threads
+//   PointEval2D/lrp/...        the same renders through eval() per pixel (the scalar reference
+//                              the raster is bit-identical to), one iteration each
 //   Render2D/wavelet/...       the same raster with the wavelet model of the same photo
+//   Region/lrp/.../rows:R      eval_region over the same raster in 512×R bands, one thread
+// Counters: Mpix/s (wall) and cpu_ns/px (CPU time of all the process's threads per pixel, the
+// steadier figure on a shared machine).
 //
 // Before the table: special-function calls per sample (9(J + s), paper §6.2) of each lrp
 // texture, and the ring-spectrum comparison with Gabor noise: LRP with J cosines (1 stratum)
@@ -30,8 +35,10 @@
 
 #include "median_reporter.h"
 #include "photo_crop.h"
+#include "point_by_point.h"
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -88,20 +95,58 @@ void bm_analyze(benchmark::State& state, const Image* photo)
     state.SetLabel(std::to_string(photo->width) + "x" + std::to_string(photo->height) + ", J=50 L=8 r=0.1, goal<300ms");
 }
 
-void bm_render(benchmark::State& state, const Model* model, int threads)
+double process_cpu_seconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+void bm_render(benchmark::State& state, const Model* model, int threads, bool point_path)
 {
     RenderSettings settings;
     settings.width = settings.height = raster_size;
     settings.units_per_pixel = 1.0 / model->description.pixels_per_unit;
     settings.origin_u = 0.25, settings.origin_v = 0.5;
     settings.threads = threads;
+    // The point path: eval() per pixel, for lrp the scalar reference the raster is bit-identical to.
+    const stochtex::bench::PointByPoint point(*model->texture);
+    const Texture& texture = point_path ? static_cast<const Texture&>(point) : *model->texture;
+    const double cpu_start = process_cpu_seconds();
     for (auto _ : state) {
-        Image image = render(*model->texture, settings);
+        Image image = render(texture, settings);
         benchmark::DoNotOptimize(image.pixels.data());
     }
-    state.counters["Mpix/s"] =
-        benchmark::Counter(double(state.iterations()) * raster_size * raster_size / 1e6, benchmark::Counter::kIsRate);
-    state.SetLabel("2D filtered, full colour, threads=" + std::to_string(threads));
+    const double pixels = double(state.iterations()) * raster_size * raster_size;
+    state.counters["Mpix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsRate);
+    // CPU time of every thread of the process per pixel: steadier than wall time on a shared machine.
+    state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
+    state.SetLabel(std::string(point_path ? "eval() per pixel" : "eval_region") + ", 2D filtered, full colour, threads=" +
+                   std::to_string(threads));
+}
+
+/// eval_region straight over the 512² raster in bands of `rows` rows, one thread: what a region's
+/// height costs the lrp raster (each window's terms and column factors are made once per region;
+/// render() hands out bands of 8 rows, the plugin 64² tiles).
+void bm_region(benchmark::State& state, const Model* model, int rows)
+{
+    RasterRegion region;
+    region.origin_u = 0.25, region.origin_v = 0.5;
+    region.du = region.dv = 1.0 / model->description.pixels_per_unit;
+    region.footprint = Footprint2D{region.du, 0, 0, region.dv};
+    region.width = raster_size;
+    std::vector<float> rgb(std::size_t(raster_size) * raster_size * 3);
+    const double cpu_start = process_cpu_seconds();
+    for (auto _ : state)
+        for (int y0 = 0; y0 < raster_size; y0 += rows) {
+            region.y0 = y0, region.height = std::min(rows, raster_size - y0);
+            model->texture->eval_region(region, &rgb[std::size_t(y0) * raster_size * 3]);
+            benchmark::DoNotOptimize(rgb.data());
+        }
+    const double pixels = double(state.iterations()) * raster_size * raster_size;
+    state.counters["Mpix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsRate);
+    state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
+    state.SetLabel("eval_region in 512x" + std::to_string(rows) + " bands, 1 thread, filtered, full colour");
 }
 
 // ---- The paper's Fig. 10 comparison --------------------------------------------------------
@@ -192,9 +237,20 @@ public:
             for (const auto& [name, entry] : medians())
                 if (name.find("wavelet") != std::string::npos && name.find(suffix) != std::string::npos) wavelet = entry.rate;
             for (const auto& [name, entry] : medians())
-                if (name.find("lrp") != std::string::npos && name.find(suffix) != std::string::npos && wavelet > 0)
+                if (name.rfind("Render2D/lrp", 0) == 0 && name.find(suffix) != std::string::npos && wavelet > 0)
                     std::printf("  %-44s %6.2f Mpix/s = %.2fx wavelet (%.2f)\n", name.c_str(), entry.rate, entry.rate / wavelet,
                                 wavelet);
+        }
+        std::printf("\nlrp raster (eval_region) vs the point path (eval() per pixel, the reference), same run:\n");
+        for (const auto& [name, entry] : medians()) {
+            if (name.rfind("Render2D/lrp", 0) != 0) continue;
+            // The point path runs one iteration per repetition: its name says so.
+            std::string point = "PointEval2D/" + name.substr(std::string("Render2D/").size());
+            point.insert(point.rfind('/') + 1, "iterations:1/");
+            const auto reference = medians().find(point);
+            if (reference != medians().end() && reference->second.rate > 0)
+                std::printf("  %-44s %6.2f vs %6.3f Mpix/s = %.1fx\n", name.c_str(), entry.rate, reference->second.rate,
+                            entry.rate / reference->second.rate);
         }
     }
 
@@ -233,11 +289,26 @@ int main(int argc, char** argv)
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
     for (const Model& model : models)
-        for (int threads : {1, 2})
+        for (int threads : {1, 2}) {
             benchmark::RegisterBenchmark(("Render2D/" + model.name + "/threads:" + std::to_string(threads)).c_str(), bm_render,
-                                         &model, threads)
+                                         &model, threads, false)
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime();
+            // The lrp point path (the reference), for the speed-up in the same run.
+            if (model.name.rfind("lrp", 0) == 0)
+                benchmark::RegisterBenchmark(("PointEval2D/" + model.name + "/threads:" + std::to_string(threads)).c_str(),
+                                             bm_render, &model, threads, true)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime()
+                    ->Iterations(1);
+        }
+    for (const Model& model : models)
+        if (model.name.rfind("lrp", 0) == 0)
+            for (int rows : {8, 64})
+                benchmark::RegisterBenchmark(("Region/" + model.name + "/rows:" + std::to_string(rows)).c_str(), bm_region,
+                                             &model, rows)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
     ComparisonReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::Shutdown();

@@ -30,6 +30,7 @@
 #include <sys/resource.h>
 
 #include "median_reporter.h"
+#include "point_by_point.h"
 #include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_texture.h"
 
@@ -86,17 +87,7 @@ const TextureDescription& description(const std::string& kind)
     return cache.emplace(kind, d).first->second;
 }
 
-/// The reference: the texture's eval() once per pixel (Texture's default eval_region).
-class PointByPoint final : public Texture {
-public:
-    explicit PointByPoint(const Texture& inner) : Texture(inner.description()), inner_(inner) {}
-    Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override { return inner_.eval(uv, footprint); }
-    Rgb eval_solid(const SurfacePoint& point) const override { return inner_.eval_solid(point); }
-    Rgb mean() const override { return inner_.mean(); }
-
-private:
-    const Texture& inner_;
-};
+using stochtex::bench::PointByPoint;  // the reference: eval() once per pixel
 
 RenderSettings settings_for(const Texture& texture, int threads)
 {

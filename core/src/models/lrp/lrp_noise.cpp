@@ -42,17 +42,20 @@ void LrpTerms::push(float fx_, float fy_, const float re_[3], const float im_[3]
     fx()[count] = fx_;
     fy()[count] = fy_;
     for (int c = 0; c < 3; ++c) re(c)[count] = re_[c], im(c)[count] = im_[c];
-    ++count;
+    live = ++count;
 }
 
 void LrpTerms::pad()
 {
     const float zero[3] = {0, 0, 0};
+    const int real = count;
     while (count % lanes) push(0, 0, zero, zero);
+    live = real;
 }
 
 void sum_terms(const LrpTermView& terms, float dx, float dy, float out[3])
 {
+    // lrp_raster::sum_terms_at repeats these operations lane by lane: change both or neither.
     constexpr int lanes = LrpTerms::lanes;
     float sum[3][lanes] = {};
     const float* fx = terms.fx();
@@ -66,6 +69,28 @@ void sum_terms(const LrpTermView& terms, float dx, float dy, float out[3])
             for (int c = 0; c < 3; ++c) sum[c][l] += re[c][t + l] * cosine - im[c][t + l] * sine;
         }
     for (int c = 0; c < 3; ++c) out[c] = (sum[c][0] + sum[c][1]) + (sum[c][2] + sum[c][3]);
+}
+
+void sum_terms_separable(const LrpTermView& terms, float dx, float dy, float out[3])
+{
+    // lrp_raster_kernels.cpp repeats these operations lane by lane (pixels are its lanes, so one
+    // running sum per channel keeps its registers free): change both or neither.
+    float sum[3] = {0, 0, 0};
+    const float* fx = terms.fx();
+    const float* fy = terms.fy();
+    const float* re[3] = {terms.re(0), terms.re(1), terms.re(2)};
+    const float* im[3] = {terms.im(0), terms.im(1), terms.im(2)};
+    for (int t = 0; t < terms.live; ++t) {
+        float sa, ca, sb, cb;
+        fast_sincos_turns(fx[t] * dx, sa, ca);
+        fast_sincos_turns(fy[t] * dy, sb, cb);
+        for (int c = 0; c < 3; ++c) {
+            const float p = re[c][t] * cb - im[c][t] * sb;
+            const float q = re[c][t] * sb + im[c][t] * cb;
+            sum[c] += ca * p - sa * q;
+        }
+    }
+    for (int c = 0; c < 3; ++c) out[c] = sum[c];
 }
 
 LrpLattice::LrpLattice(double spacing_x, double spacing_y, double origin_x, double origin_y)
@@ -168,7 +193,7 @@ void LrpStratumNoise::draw(std::int64_t i, std::int64_t j, const LrpFilter& filt
 void LrpStratumNoise::eval(double x, double y, const LrpFilter& filter, float out[3]) const
 {
     LrpTerms scratch;
-    sum_windows(lattice_, normalisation_, x, y,
+    sum_windows<LrpTermSum::separable>(lattice_, normalisation_, x, y,
                 [&](std::int64_t i, std::int64_t j) {
                     scratch.count = 0;
                     draw(i, j, filter, scratch);
@@ -179,6 +204,7 @@ void LrpStratumNoise::eval(double x, double y, const LrpFilter& filter, float ou
 
 bool LrpStratumNoise::survives(const LrpFilter& filter) const
 {
+    if (amplitude_[0] == 0 && amplitude_[1] == 0 && amplitude_[2] == 0) return false;
     if (filter.identity) return true;
     // Every term's response is at most that of the slowest frequency along the footprint's minor axis.
     const double minor_sd = std::sqrt(std::max(0.0, filter.covariance.smallest_eigenvalue()));

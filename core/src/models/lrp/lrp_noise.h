@@ -64,6 +64,7 @@ struct LrpTermView {
     const float* data = nullptr;
     int count = 0;
     int stride = 0;
+    int live = 0;  ///< the terms before the padding (the separable sums skip the zero terms)
     const float* fx() const { return data; }
     const float* fy() const { return data + stride; }
     const float* re(int c) const { return data + (2 + c) * stride; }
@@ -75,6 +76,7 @@ struct LrpTerms {
     static constexpr int capacity = 256;
     static constexpr int lanes = 4;
     int count = 0;
+    int live = 0;  ///< count before pad()
     float data[8 * capacity];
 
     float* fx() { return data; }
@@ -84,13 +86,25 @@ struct LrpTerms {
     void push(float fx_, float fy_, const float re_[3], const float im_[3]);
     /// Pads with zero terms to a multiple of `lanes`.
     void pad();
-    LrpTermView view() const { return {data, count, capacity}; }
+    LrpTermView view() const { return {data, count, capacity, live}; }
 };
 
 /// Σ_t re·cos(2π f_t·d) − im·sin(2π f_t·d) per channel, in `lanes` independent partial sums
 /// combined in a fixed order: the loop vectorises without reassociating, so every caller gets
 /// bit-identical sums.
 void sum_terms(const LrpTermView& terms, float dx, float dy, float out[3]);
+
+/// The same sum with each cosine of a sum taken as a product, cos(a + b) = cos a cos b − sin a sin b
+/// (lrp_raster.h): what the random-phase strata use, because on a raster a and b are shared by
+/// whole columns and rows of pixels. One running sum per channel over the `live` terms (the
+/// padding costs nothing); rounding differs from sum_terms by a few ulps of the terms.
+void sum_terms_separable(const LrpTermView& terms, float dx, float dy, float out[3]);
+
+/// Which of the two sums a window takes.
+enum class LrpTermSum {
+    direct,    ///< sum_terms (the structure: its positions are displaced, no raster to share)
+    separable, ///< sum_terms_separable (the random-phase strata: lrp_raster.h repeats it)
+};
 
 /// A lattice of windows: point (i, j) at origin + (i·spacing_x, j·spacing_y).
 struct LrpLattice {
@@ -123,7 +137,7 @@ enum class LrpNormalisation {
 
 /// Σ_i w_i(x) · terms_i(x − x_i), normalised, over the 3×3 lattice points around the nearest one.
 /// `terms_at(i, j)` returns the LrpTermView of lattice point (i, j) (unwrapped indices).
-template <class TermsAt>
+template <LrpTermSum term_sum, class TermsAt>
 void sum_windows(const LrpLattice& lattice, LrpNormalisation normalisation, double x, double y, const TermsAt& terms_at,
                  float out[3])
 {
@@ -144,7 +158,10 @@ void sum_windows(const LrpLattice& lattice, LrpNormalisation normalisation, doub
             weight_squared += w * w;
             if (terms.count == 0) continue;
             float local[3];
-            sum_terms(terms, dx, dy, local);
+            if constexpr (term_sum == LrpTermSum::separable)
+                sum_terms_separable(terms, dx, dy, local);
+            else
+                sum_terms(terms, dx, dy, local);
             for (int c = 0; c < 3; ++c) sum[c] += w * local[c];
         }
     }
@@ -156,9 +173,11 @@ void sum_windows(const LrpLattice& lattice, LrpNormalisation normalisation, doub
 }
 
 /// Packed terms of a rectangle of lattice points, drawn once for a raster region (eval_region):
-/// the same terms eval() draws point by point, so the sums are bit-identical.
+/// the same terms eval() draws point by point, so the sums are bit-identical. Each point's terms
+/// may be read a vector past its end (lrp_raster_kernels.h's padding).
 class LrpTermCache {
 public:
+    static constexpr std::size_t read_padding = 16;
     /// Lattice points [i0, i0 + nx) × [j0, j0 + ny); draw(i, j, LrpTerms&) fills one point's terms.
     template <class Draw>
     void fill(std::int64_t i0, std::int64_t j0, int nx, int ny, const Draw& draw)
@@ -167,6 +186,7 @@ public:
         data_.clear();
         offset_.assign(std::size_t(nx) * ny, 0);
         count_.assign(std::size_t(nx) * ny, 0);
+        live_.assign(std::size_t(nx) * ny, 0);
         LrpTerms scratch;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
@@ -175,15 +195,21 @@ public:
                 const std::size_t k = std::size_t(j) * nx + i;
                 offset_[k] = data_.size();
                 count_[k] = scratch.count;
+                live_[k] = scratch.live;
                 for (int a = 0; a < 8; ++a)
                     data_.insert(data_.end(), scratch.data + a * LrpTerms::capacity,
                                  scratch.data + a * LrpTerms::capacity + scratch.count);
             }
+        data_.resize(data_.size() + read_padding, 0.0f);
     }
+    std::int64_t i_begin() const { return i0_; }
+    std::int64_t i_end() const { return i0_ + nx_; }
+    std::int64_t j_begin() const { return j0_; }
+    std::int64_t j_end() const { return j0_ + ny_; }
     LrpTermView at(std::int64_t i, std::int64_t j) const
     {
         const std::size_t k = std::size_t(j - j0_) * nx_ + std::size_t(i - i0_);
-        return {data_.data() + offset_[k], count_[k], count_[k]};
+        return {data_.data() + offset_[k], count_[k], count_[k], live_[k]};
     }
 
 private:
@@ -191,7 +217,7 @@ private:
     int nx_ = 0, ny_ = 0;
     std::vector<float> data_;
     std::vector<std::size_t> offset_;
-    std::vector<int> count_;
+    std::vector<int> count_, live_;
 };
 
 /// One random-phase stratum ready to evaluate.
@@ -218,7 +244,8 @@ public:
     const std::array<double, 3>& variance() const { return variance_; }
     /// Mean response² over the stored bins: the share of the variance `filter` keeps.
     double kept_variance_fraction(const LrpFilter& filter) const;
-    /// Whether `filter` keeps anything of this stratum (else it need not be evaluated).
+    /// Whether `filter` keeps anything of this stratum (else it need not be evaluated): false for
+    /// a stratum of zero amplitude (a channel-less band of the photo), whatever the filter.
     bool survives(const LrpFilter& filter) const;
     double spread() const { return spread_; }
 

@@ -32,6 +32,19 @@
 
 namespace stochtex {
 
+/// Where eval_with evaluates n_R for one point: structure positions after placement and
+/// turbulence, each with its placement weight (`blended`: combine as Σ weight·value, else take
+/// the one value as it is).
+struct LrpStructureSamples {
+    struct Sample {
+        double xi = 0, eta = 0;
+        float weight = 1;
+    };
+    int count = 0;
+    bool blended = false;
+    Sample sample[4];
+};
+
 class LrpStructureNoise {
 public:
     struct Options {
@@ -51,20 +64,32 @@ public:
     template <class TermsOf>
     void eval_structure(double xi, double eta, const TermsOf& terms_of, float out[3]) const
     {
-        if (blocks_per_side_ == 1) {
+        if (single_block()) {
             // Every lattice point holds the same T-periodic function and the windows are a
             // partition of unity: their blend is that function (9 times cheaper).
-            const std::int64_t i = lattice_.nearest(0, xi), j = lattice_.nearest(1, eta);
-            sum_terms(terms_of(0), float(xi - (lattice_.origin[0] + double(i) * lattice_.spacing[0])),
-                      float(eta - (lattice_.origin[1] + double(j) * lattice_.spacing[1])), out);
+            float dx, dy;
+            nearest_offset(xi, eta, dx, dy);
+            sum_terms(terms_of(0), dx, dy, out);
             return;
         }
-        sum_windows(lattice_, LrpNormalisation::partition, xi, eta,
+        sum_windows<LrpTermSum::direct>(lattice_, LrpNormalisation::partition, xi, eta,
                     [&](std::int64_t i, std::int64_t j) {
                         return terms_of(int(lattice_.wrapped(1, j) * blocks_per_side_ + lattice_.wrapped(0, i)));
                     },
                     out);
     }
+    /// One block for the whole crop: n_R is sum_terms of its terms at nearest_offset.
+    bool single_block() const { return blocks_per_side_ == 1; }
+    /// The offset of structure position (xi, eta) from its nearest lattice point.
+    void nearest_offset(double xi, double eta, float& dx, float& dy) const
+    {
+        const std::int64_t i = lattice_.nearest(0, xi), j = lattice_.nearest(1, eta);
+        dx = float(xi - (lattice_.origin[0] + double(i) * lattice_.spacing[0]));
+        dy = float(eta - (lattice_.origin[1] + double(j) * lattice_.spacing[1]));
+    }
+    /// eval_with's evaluation positions for exemplar position (x, y).
+    template <class TurbulenceOf>
+    LrpStructureSamples samples(double x, double y, const TurbulenceOf& turbulence_of) const;
     /// Block b's terms under `filter`.
     void draw_block(int block, const LrpFilter& filter, LrpTerms& terms) const;
     /// eval() with the blocks' filtered terms from `terms_of` and the turbulence strata's values
@@ -139,26 +164,39 @@ std::array<double, 2> LrpStructureNoise::displacement(double x, double y, const 
     return d;
 }
 
+template <class TurbulenceOf>
+LrpStructureSamples LrpStructureNoise::samples(double x, double y, const TurbulenceOf& turbulence_of) const
+{
+    const double xi = structure_position(0, x), eta = structure_position(1, y);
+    const std::array<double, 2> d = displacement(x, y, turbulence_of);
+    LrpStructureSamples s;
+    if (!placement_) {
+        s.count = 1;
+        s.sample[0] = {xi + d[0], eta + d[1], 1.0f};
+        return s;
+    }
+    s.blended = true;
+    const LrpPlacementWeights wx = lrp_placement_weights(xi, placement_cell_), wy = lrp_placement_weights(eta, placement_cell_);
+    for (int b = 0; b < wy.count; ++b)
+        for (int a = 0; a < wx.count; ++a) {
+            const std::array<double, 2> shift = placement_shift(wx.cell[a], wy.cell[b]);
+            s.sample[s.count++] = {xi + shift[0] + d[0], eta + shift[1] + d[1], wx.weight[a] * wy.weight[b]};
+        }
+    return s;
+}
+
 template <class TermsOf, class TurbulenceOf>
 void LrpStructureNoise::eval_with(double x, double y, const TermsOf& terms_of, const TurbulenceOf& turbulence_of,
                                   float out[3]) const
 {
-    const double xi = structure_position(0, x), eta = structure_position(1, y);
-    const std::array<double, 2> d = displacement(x, y, turbulence_of);
-    if (!placement_) {
-        eval_structure(xi + d[0], eta + d[1], terms_of, out);
-        return;
-    }
-    const LrpPlacementWeights wx = lrp_placement_weights(xi, placement_cell_), wy = lrp_placement_weights(eta, placement_cell_);
+    const LrpStructureSamples s = samples(x, y, turbulence_of);
+    if (!s.blended) return eval_structure(s.sample[0].xi, s.sample[0].eta, terms_of, out);
     for (int c = 0; c < 3; ++c) out[c] = 0;
-    for (int b = 0; b < wy.count; ++b)
-        for (int a = 0; a < wx.count; ++a) {
-            const std::array<double, 2> shift = placement_shift(wx.cell[a], wy.cell[b]);
-            float value[3];
-            eval_structure(xi + shift[0] + d[0], eta + shift[1] + d[1], terms_of, value);
-            const float weight = wx.weight[a] * wy.weight[b];
-            for (int c = 0; c < 3; ++c) out[c] += weight * value[c];
-        }
+    for (int k = 0; k < s.count; ++k) {
+        float value[3];
+        eval_structure(s.sample[k].xi, s.sample[k].eta, terms_of, value);
+        for (int c = 0; c < 3; ++c) out[c] += s.sample[k].weight * value[c];
+    }
 }
 
 }  // namespace stochtex

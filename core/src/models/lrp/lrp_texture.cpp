@@ -2,6 +2,8 @@
 #include <stochtex/models/lrp_parameters.h>
 
 #include "models/lrp/lrp_parameters.h"
+#include "models/lrp/lrp_raster.h"
+#include "models/lrp/lrp_raster_kernels.h"
 #include "numerics/random.h"
 
 #include <algorithm>
@@ -108,18 +110,15 @@ Rgb LrpTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 
 namespace {
 
-/// A stratum with its lattice points' terms drawn once for a raster region, when the region is
-/// dense enough for that to pay (a coarse MIP level spans many lattice cells per pixel: those
-/// draw per pixel, as eval() does).
-struct RegionStratum {
-    const LrpStratumNoise* noise = nullptr;
-    LrpFilter filter;
+/// The lattice points whose windows reach a raster region, with their terms drawn once for the
+/// region, when the region is dense enough for that to pay (a coarse MIP level spans many lattice
+/// cells per pixel: those draw per pixel, as eval() does).
+struct RegionTerms {
     bool cached = false;
     LrpTermCache terms;
 
-    RegionStratum(const LrpStratumNoise& stratum, const LrpFilter& f, const double x_ends[2], const double y_ends[2],
-                  std::size_t pixels)
-        : noise(&stratum), filter(f)
+    RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const double x_ends[2], const double y_ends[2],
+                std::size_t pixels)
     {
         const LrpLattice& lattice = stratum.lattice();
         const std::int64_t i0 = std::min(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) - 1;
@@ -131,65 +130,144 @@ struct RegionStratum {
             terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
                        [&](std::int64_t i, std::int64_t j, LrpTerms& out) { stratum.draw(i, j, filter, out); });
     }
-    /// Exactly eval()'s value: the same terms, summed the same way.
-    void eval(double x, double y, float out[3]) const
-    {
-        if (!cached) return noise->eval(x, y, filter, out);
-        sum_windows(noise->lattice(), noise->normalisation(), x, y, [&](std::int64_t a, std::int64_t b) { return terms.at(a, b); },
-                    out);
-    }
 };
+
+/// One thread's buffers for eval_region, reused region after region.
+struct RegionScratch {
+    std::vector<double> x, y;
+    std::vector<float> m[3], value[3];
+    std::vector<float> turbulence[2][2];  // component, stratum: channel 0 per pixel
+    std::vector<LrpStructureSamples> samples;  // per pixel
+    std::vector<float> dx, dy, sums[3];        // per structure sample
+};
+
+RegionScratch& region_scratch()
+{
+    thread_local RegionScratch s;
+    return s;
+}
+
+/// `stratum` under `filter` at every pixel of the grid into out[c][pixel]: the separable raster
+/// where the terms can be drawn once for the region, else eval() per pixel (identical values).
+void stratum_values(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpRasterGrid& grid,
+                    float* const out[3])
+{
+    const double x_ends[2] = {grid.x[0], grid.x[grid.width - 1]};
+    const double y_ends[2] = {grid.y[0], grid.y[grid.height - 1]};
+    const RegionTerms region(stratum, filter, x_ends, y_ends, std::size_t(grid.width) * std::size_t(grid.height));
+    if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out);
+    for (int r = 0; r < grid.height; ++r)
+        for (int k = 0; k < grid.width; ++k) {
+            float value[3];
+            stratum.eval(grid.x[k], grid.y[r], filter, value);
+            const std::size_t pixel = std::size_t(r) * std::size_t(grid.width) + std::size_t(k);
+            for (int c = 0; c < 3; ++c) out[c][pixel] = value[c];
+        }
+}
 
 }  // namespace
 
 void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) const
 {
-    // eval() at every pixel with each lattice point's terms drawn once for the region (and the
-    // structure's blocks filtered once): the same terms and the same sums, so bit-identical.
+    // eval() at every pixel, rearranged: each lattice point's terms drawn once for the region,
+    // the strata summed by the separable raster (lrp_raster.h), the structure's blocks filtered
+    // once. The same terms and the same operations per pixel, so bit-identical to eval().
     const double ppu = description().pixels_per_unit;
     const LrpFilter filter = LrpFilter::from_footprint(region.footprint, ppu);
     const std::array<double, 3> dropped = dropped_sigma(filter);
     const std::size_t pixels = std::size_t(region.width) * region.height;
     if (pixels == 0) return;
-    const double x_ends[2] = {region.u(0) * ppu, region.u(region.width - 1) * ppu};
-    const double y_ends[2] = {region.v(0) * ppu, region.v(region.height - 1) * ppu};
+    if (!(region.du > 0 && region.dv > 0)) return Texture::eval_region(region, rgb);  // the raster needs increasing positions
 
-    std::vector<RegionStratum> strata;
-    for (const LrpStratumNoise& stratum : strata_)
-        if (stratum.survives(filter)) strata.emplace_back(stratum, filter, x_ends, y_ends, pixels);
-    LrpTermCache blocks;
-    std::vector<RegionStratum> turbulence[2];
-    const bool cache_blocks = structure_ && double(structure_->block_count()) <= 4.0 * double(pixels) + 64;
-    if (cache_blocks)
-        blocks.fill(0, 0, structure_->block_count(), 1,
-                    [&](std::int64_t b, std::int64_t, LrpTerms& terms) { structure_->draw_block(int(b), filter, terms); });
-    if (structure_)
-        for (int component = 0; component < 2; ++component)
-            for (const LrpStratumNoise& stratum : structure_->turbulence_strata(component))
-                turbulence[component].emplace_back(stratum, LrpFilter{}, x_ends, y_ends, pixels);
+    RegionScratch& s = region_scratch();
+    s.x.resize(std::size_t(region.width));
+    s.y.resize(std::size_t(region.height));
+    for (int i = 0; i < region.width; ++i) s.x[std::size_t(i)] = region.u(i) * ppu;
+    for (int j = 0; j < region.height; ++j) s.y[std::size_t(j)] = region.v(j) * ppu;
+    const LrpRasterGrid grid{s.x.data(), region.width, s.y.data(), region.height};
+    for (int c = 0; c < 3; ++c) {
+        s.m[c].assign(pixels, 0.0f);
+        s.value[c].resize(pixels);
+    }
+    float* const value[3] = {s.value[0].data(), s.value[1].data(), s.value[2].data()};
+    for (const LrpStratumNoise& stratum : strata_) {
+        if (!stratum.survives(filter)) continue;
+        stratum_values(stratum, filter, grid, value);
+        for (int c = 0; c < 3; ++c)
+            for (std::size_t p = 0; p < pixels; ++p) s.m[c][p] += value[c][p];
+    }
 
-    for (int j = 0; j < region.height; ++j)
-        for (int i = 0; i < region.width; ++i) {
-            const double x = region.u(i) * ppu, y = region.v(j) * ppu;
-            float m[3] = {0, 0, 0};
-            for (const RegionStratum& stratum : strata) {
-                float value[3];
-                stratum.eval(x, y, value);
-                for (int c = 0; c < 3; ++c) m[c] += value[c];
+    if (structure_) {
+        // The turbulence strata are unfiltered strata on the same grid; the blocks are drawn once.
+        for (int component = 0; component < 2; ++component) {
+            const std::vector<LrpStratumNoise>& turbulence = structure_->turbulence_strata(component);
+            for (std::size_t k = 0; k < turbulence.size(); ++k) {
+                stratum_values(turbulence[k], LrpFilter{}, grid, value);
+                s.turbulence[component][k].assign(s.value[0].begin(), s.value[0].begin() + std::ptrdiff_t(pixels));
             }
-            if (structure_) {
-                float value[3];
-                auto turbulence_of = [&](int component, std::size_t k, double px, double py, float out[3]) {
-                    turbulence[component][k].eval(px, py, out);
-                };
-                if (cache_blocks)
-                    structure_->eval_with(x, y, [&](int b) { return blocks.at(b, 0); }, turbulence_of, value);
-                else
-                    structure_->eval(x, y, filter, value);
-                for (int c = 0; c < 3; ++c) m[c] += value[c];
-            }
-            rgb.set(std::size_t(j) * region.width + i, finish(m, dropped));
         }
+        LrpTermCache blocks;
+        const bool cache_blocks = double(structure_->block_count()) <= 4.0 * double(pixels) + 64;
+        if (cache_blocks)
+            blocks.fill(0, 0, structure_->block_count(), 1,
+                        [&](std::int64_t b, std::int64_t, LrpTerms& terms) { structure_->draw_block(int(b), filter, terms); });
+        const auto turbulence_at = [&](std::size_t p) {
+            return [&s, p](int component, std::size_t k, double, double, float out[3]) {
+                out[0] = s.turbulence[component][k][p], out[1] = out[2] = 0;
+            };
+        };
+        if (cache_blocks && structure_->single_block()) {
+            // One block: every sample is sum_terms of the same terms, so the samples of the whole
+            // region go through the SIMD kernel at once (pixels as lanes), then combine as
+            // eval_with does.
+            s.samples.resize(pixels);
+            s.dx.clear(), s.dy.clear();
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                s.samples[p] = structure_->samples(x, y, turbulence_at(p));
+                for (int k = 0; k < s.samples[p].count; ++k) {
+                    float dx, dy;
+                    structure_->nearest_offset(s.samples[p].sample[k].xi, s.samples[p].sample[k].eta, dx, dy);
+                    s.dx.push_back(dx), s.dy.push_back(dy);
+                }
+            }
+            const std::size_t n = s.dx.size();
+            s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
+            for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
+            float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
+            lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
+            std::size_t next = 0;
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const LrpStructureSamples& samples = s.samples[p];
+                float structure[3] = {0, 0, 0};
+                for (int k = 0; k < samples.count; ++k, ++next)
+                    for (int c = 0; c < 3; ++c)
+                        structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
+                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+            }
+        } else {
+            for (std::size_t p = 0; p < pixels; ++p) {
+                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                float structure[3];
+                if (cache_blocks)
+                    structure_->eval_with(x, y, [&](int b) { return blocks.at(b, 0); }, turbulence_at(p), structure);
+                else
+                    structure_->eval(x, y, filter, structure);
+                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+            }
+        }
+    }
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const float m[3] = {s.m[0][p], s.m[1][p], s.m[2][p]};
+        rgb.set(p, finish(m, dropped));
+    }
+}
+
+void LrpTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& rgb) const
+{
+    // eval_solid is eval at (p.x, p.y) with the (u, v) part of the footprint: on a solid slice
+    // that is the plane's own raster.
+    eval_region(region.plane, rgb);
 }
 
 Rgb LrpTexture::eval_solid(const SurfacePoint& point) const

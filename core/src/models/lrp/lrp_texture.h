@@ -43,6 +43,8 @@ public:
     using Texture::eval_region;
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
+    using Texture::eval_solid_region;
+    void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
     Rgb mean() const override { return colour_.mean(); }
 
     const std::array<double, 3>& sigma_m() const { return sigma_m_; }

@@ -47,6 +47,10 @@ public:
         return value_[i] + f * (value_[i + 1] - value_[i]);
     }
 
+    /// The table itself (size + 2 values: w at y² = k / scale()), for the raster's gathers.
+    const float* values() const { return value_.data(); }
+    float scale() const { return scale_; }
+
 private:
     LrpWindowTable();
     float scale_;

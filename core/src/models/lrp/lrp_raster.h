@@ -1,0 +1,35 @@
+// The raster path of a random-phase stratum (LrpStratumNoise): separable sums over a grid.
+//
+// A term of window i at pixel (x, y) is re·cos θ − im·sin θ with θ = 2π(f_x dx + f_y dy),
+// dx = x − x_i, dy = y − y_i. Written as cos(a + b), it is
+//
+//   ca·P − sa·Q,   (ca, sa) = (cos, sin)(2π f_x dx),   P = re·cb − im·sb,  Q = re·sb + im·cb,
+//
+// (cb, sb) = (cos, sin)(2π f_y dy). On a grid every pixel of a column shares dx and every pixel
+// of a row shares dy, so the raster takes one sine/cosine per term per window *column* (a table
+// over the window's columns, shared by its rows) and one per term per window *row*, and per pixel
+// only the six products and sums above. LrpStratumNoise::eval uses the same decomposition
+// (sum_terms_separable), so the raster and the point path are bit-identical: every table value
+// is computed directly from its own dx or dy (no recurrence, nothing that drifts), and the SIMD
+// kernels (lrp_raster_kernels.h) repeat the scalar operations lane by lane.
+#pragma once
+
+#include "models/lrp/lrp_noise.h"
+
+namespace stochtex {
+
+/// Exemplar-pixel positions of a raster's columns and rows (both strictly increasing).
+struct LrpRasterGrid {
+    const double* x = nullptr;
+    int width = 0;
+    const double* y = nullptr;
+    int height = 0;
+};
+
+/// out[c][r · width + k] = noise.eval(x[k], y[r], filter)'s channel c, bit for bit, where `terms`
+/// holds the lattice points' terms under `filter` for every lattice point whose window reaches
+/// the grid. Buffers: one per-thread scratch, grown once (no allocation per call after that).
+void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
+                        float* const out[3]);
+
+}  // namespace stochtex
