@@ -63,6 +63,8 @@ TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* 
         else
             planes_.emplace_back(pyramid, TilingGrid(seed, edge));
     }
+    packed_ = std::make_shared<const PackedMomentPyramid>(*pyramid);
+    for (const TilingNoise& plane : planes_) rasters_.emplace_back(plane, *packed_);
     // The exemplar stores each channel in its map's input units (fit_tiling_exemplar): unit σ_M.
     if (output_ == TilingOutput::colour)
         colour_mapping_ = std::make_shared<const TabulatedColourMapping>(description, std::array<double, 3>{1, 1, 1});
@@ -76,6 +78,21 @@ Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
                                          options_.sampling);
 }
 
+Moments TilingTexture::plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const
+{
+    if (!TilingRaster::serves(plan)) return planes_[std::size_t(k)].footprint_estimate(x, y, plan.taps, cache.tiles);
+    float packed[PackedMomentPyramid::record];
+    rasters_[std::size_t(k)].estimate(x, y, plan, cache.vertices, packed);
+    return rasters_[std::size_t(k)].unpack(packed);
+}
+
+Moments TilingTexture::raster_moments(const Vec2& uv, const Footprint2D& f) const
+{
+    const double ppu = description().pixels_per_unit;
+    PlaneCache cache(true);
+    return plane_moments(0, uv[0] * ppu, uv[1] * ppu, rasters_[0].plan(f.scaled(ppu), options_.sampling), cache);
+}
+
 Rgb TilingTexture::colour(const Moments& m) const
 {
     switch (output_) {
@@ -85,7 +102,7 @@ Rgb TilingTexture::colour(const Moments& m) const
         return colour_mapping_->to_rgb({m.mean[0], m.mean[1], m.mean[2]}, spread);
     }
     case TilingOutput::colour_map:
-        return colour_map_->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)},
+        return colour_map_->lookup(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)},
                                      options_.colour_map);
     case TilingOutput::normal_map: {
         const Direction n = normal_from_slopes(m.mean[0], m.mean[1]);
@@ -95,19 +112,19 @@ Rgb TilingTexture::colour(const Moments& m) const
     throw Error("tiling texture: unknown output");
 }
 
-Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(moments(uv, footprint)); }
+Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(raster_moments(uv, footprint)); }
 
 void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
 {
-    // moments() at every pixel with the footprint's taps planned once and the grid's vertices
-    // shared along the rows.
+    // raster_moments() at every pixel with the footprint's taps planned once and the grid's
+    // vertices shared along the rows.
     const double ppu = description().pixels_per_unit;
-    const TapPlan plan = planes_[0].plan(region.footprint.scaled(ppu), options_.sampling);
-    TileCache cache;
+    const TilingRaster::Plan plan = rasters_[0].plan(region.footprint.scaled(ppu), options_.sampling);
+    PlaneCache cache;
     for (int j = 0; j < region.height; ++j) {
         const double y = region.v(j) * ppu;
         for (int i = 0; i < region.width; ++i)
-            out.set(std::size_t(j) * region.width + i, colour(planes_[0].footprint_estimate(region.u(i) * ppu, y, plan, cache)));
+            out.set(std::size_t(j) * region.width + i, colour(plane_moments(0, region.u(i) * ppu, y, plan, cache)));
     }
 }
 
@@ -130,12 +147,12 @@ TilingTexture::SolidPlan TilingTexture::solid_plan(const SurfacePoint& point) co
         const int s = k, t = (k + 1) % 3;
         // The footprint projected on the plane (s, t), in exemplar pixels.
         const Footprint2D footprint = Footprint2D{point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t]}.scaled(ppu);
-        plan.taps[k] = planes_[k].plan(footprint, options_.sampling);
+        plan.taps[k] = rasters_[k].plan(footprint, options_.sampling);
     }
     return plan;
 }
 
-Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const
+Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<PlaneCache, 3>& caches) const
 {
     const double ppu = description().pixels_per_unit;
     const Moments& global = planes_[0].global();
@@ -146,7 +163,7 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
         const double w = plan.weight[k];
         if (w == 0) continue;
         const int s = k, t = (k + 1) % 3;
-        const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, plan.taps[k], caches[k]);
+        const Moments m = plane_moments(k, point.p[s] * ppu, point.p[t] * ppu, plan.taps[k], caches[k]);
         for (int a = 0; a < result.channels; ++a) {
             result.mean[a] += w * (m.mean[a] - global.mean[a]);
             for (int b = 0; b < result.channels; ++b) result.moment(a, b) += w * w * m.moment(a, b);
@@ -157,7 +174,7 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
 
 Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
 {
-    std::array<TileCache, 3> caches;
+    std::array<PlaneCache, 3> caches{PlaneCache(true), PlaneCache(true), PlaneCache(true)};
     return colour(solid_moments(point, solid_plan(point), caches));
 }
 
@@ -169,7 +186,7 @@ void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput
     point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
     point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
     const SolidPlan plan = solid_plan(point);
-    std::array<TileCache, 3> caches;
+    std::array<PlaneCache, 3> caches;
     for (int j = 0; j < plane.height; ++j)
         for (int i = 0; i < plane.width; ++i) {
             point.p = {plane.u(i), plane.v(j), region.w};

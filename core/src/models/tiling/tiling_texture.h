@@ -34,6 +34,7 @@
 #include "models/tiling/colour_map_filter.h"
 #include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_noise.h"
+#include "models/tiling/tiling_raster.h"
 
 #include <stochtex/texture.h>
 #include <stochtex/models/tiling_parameters.h>
@@ -56,6 +57,8 @@ public:
     explicit TilingTexture(const TextureDescription& description, const TilingFilterOptions& options = {});
     /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
     TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options = {});
+    TilingTexture(const TilingTexture&) = delete;  // rasters_ refer to planes_ and packed_
+    TilingTexture& operator=(const TilingTexture&) = delete;
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
@@ -63,8 +66,12 @@ public:
     void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
     Rgb mean() const override { return colour(planes_[0].global()); }
 
-    /// The blended channels' filtered moments at uv over the footprint (2D).
+    /// The blended channels' filtered moments at uv over the footprint (2D), all of them, in
+    /// double precision (TilingNoise::footprint_estimate: the reference of the packed path).
     Moments moments(const Vec2& uv, const Footprint2D& footprint) const;
+    /// The moments eval() and the batch methods use (TilingRaster, single precision, only the
+    /// second moments colour() reads; the double path where TilingRaster does not serve the plan).
+    Moments raster_moments(const Vec2& uv, const Footprint2D& footprint) const;
     /// The output colour of channels with these moments.
     Rgb colour(const Moments& moments) const;
     const TilingNoise& noise() const { return planes_[0]; }
@@ -77,15 +84,27 @@ private:
     /// The solid blend's weights and per-plane taps for one normal and footprint.
     struct SolidPlan {
         std::array<double, 3> weight{};  ///< ω_k / ‖ω‖ (0: plane unused)
-        std::array<TapPlan, 3> taps;
+        std::array<TilingRaster::Plan, 3> taps;
+    };
+    /// One thread's caches of one plane's grid (the packed path's and the double path's).
+    struct PlaneCache {
+        TilingRaster::VertexCache vertices;
+        TileCache tiles;
+        PlaneCache() = default;
+        /// A cache for one evaluation (its taps share a few vertices).
+        explicit PlaneCache(bool single) : vertices(single ? 2 : 6, single ? 2 : 4) {}
     };
     SolidPlan solid_plan(const SurfacePoint& point) const;
-    Moments solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const;
+    Moments solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<PlaneCache, 3>& caches) const;
+    /// Plane k's moments at (x, y) exemplar pixels with a planned footprint.
+    Moments plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const;
 
     TilingFilterOptions options_;
     TilingOutput output_;
     /// planes_[0] is the 2D texture; planes_[1], [2] the extra planes of the solid blend.
     std::vector<TilingNoise> planes_;
+    std::shared_ptr<const PackedMomentPyramid> packed_;
+    std::vector<TilingRaster> rasters_;  ///< one per plane
     std::shared_ptr<const TabulatedColourMapping> colour_mapping_;
     std::optional<ColourMapFilter> colour_map_;
 };
