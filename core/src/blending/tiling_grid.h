@@ -81,6 +81,8 @@ public:
     TileVertex vertex(std::int64_t i, std::int64_t j) const;
     /// The edges actually used along x and y (differ from `edge` only in the periodic form).
     const std::array<double, 2>& edges() const { return edge_; }
+    /// 1 / edges(), for triangle() and its vectorised form (tiling_raster_kernels.h).
+    const std::array<double, 2>& inverse_edges() const { return inverse_edge_; }
     /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
     std::uint32_t seed() const { return seed_; }
 

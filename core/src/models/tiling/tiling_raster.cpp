@@ -3,6 +3,7 @@
 #include "numerics/exact_rounding.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace stochtex {
@@ -46,21 +47,16 @@ struct Pairs<3> {  // the variances only: what the colour output reads
     static constexpr int first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
 };
 
-/// The bilinear lookup of a level at (x, y) level-0 pixels (MomentPyramid::sample_level_linear's
-/// texel centres and wrap), all 8 lanes: branch-free, the two texels along x read as one block.
-inline Record bilinear(const PackedMomentPyramid::Level& l, double x, double y)
+/// The bilinear blend of a texel pair (r0: row iy, r1: row iy + 1; each two adjacent records).
+inline Record bilinear(const float* r0, const float* r1, float tx, float ty)
 {
-    const double lx = x * l.scale_x - 0.5, ly = y * l.scale_y - 0.5;
-    const double x0 = floor_exact(lx), y0 = floor_exact(ly);
-    const float tx = float(lx - x0), ty = float(ly - y0);
-    const std::int64_t ix = std::int64_t(x0) & l.mask_x, iy = std::int64_t(y0) & l.mask_y;
-    const std::int64_t jy = (iy + 1) & l.mask_y;
-    const float* r0 = l.data + (std::size_t(iy) * l.row + std::size_t(ix)) * record;
-    const float* r1 = l.data + (std::size_t(jy) * l.row + std::size_t(ix)) * record;
     const Record vx = splat(tx), vy = splat(ty), sx = splat(1 - tx), sy = splat(1 - ty);
     const Record low = sx * load(r0) + vx * load(r0 + record), high = sx * load(r1) + vx * load(r1 + record);
     return sy * low + vy * high;
 }
+
+/// Pixels per pass of the address stage (its buffers hold taps × 3 tiles × this many lanes).
+constexpr std::size_t chunk = 64;
 
 }  // namespace
 
@@ -107,7 +103,7 @@ PackedMomentPyramid::PackedMomentPyramid(const MomentPyramid& pyramid) : channel
     }
 }
 
-TilingRaster::VertexCache::VertexCache(int bits_i, int bits_j)
+TilingRaster::Workspace::Workspace(int bits_i, int bits_j)
     : slots_(std::size_t(1) << (bits_i + bits_j), Slot{INT64_MIN, INT64_MIN, 0, 0}),
       mask_i_((std::uint64_t(1) << bits_i) - 1), mask_j_((std::uint64_t(1) << bits_j) - 1), shift_j_(bits_i)
 {
@@ -118,12 +114,22 @@ TilingRaster::TilingRaster(const TilingNoise& noise, const PackedMomentPyramid& 
 {
 }
 
+namespace {
+tiling_raster::LevelGeometry geometry(const PackedMomentPyramid::Level& l)
+{
+    const double width = double(l.mask_x + 1), height = double(l.mask_y + 1);
+    return {l.scale_x, l.scale_y, width, height, 1 / width, 1 / height, double(l.row)};
+}
+}  // namespace
+
 TilingRaster::Plan TilingRaster::plan(const Footprint2D& footprint_px, const FootprintSampling& sampling) const
 {
     Plan plan;
     plan.taps = noise_.plan(footprint_px, sampling);
     plan.lower = &pyramid_.level(plan.taps.choice.lower);
     plan.upper = plan.taps.choice.t > 0 ? &pyramid_.level(plan.taps.choice.lower + 1) : nullptr;
+    plan.lower_geometry = geometry(*plan.lower);
+    if (plan.upper) plan.upper_geometry = geometry(*plan.upper);
     plan.t = float(plan.taps.choice.t);
     const int taps = std::min(plan.taps.na * plan.taps.nb, TapPlan::max_planned_taps);
     for (int k = 0; k < taps; ++k) {
@@ -135,10 +141,10 @@ TilingRaster::Plan TilingRaster::plan(const Footprint2D& footprint_px, const Foo
     return plan;
 }
 
-const double* TilingRaster::translation(std::int64_t i, std::int64_t j, VertexCache& cache) const
+const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspace& workspace) const
 {
-    VertexCache::Slot& slot =
-        cache.slots_[std::size_t((std::uint64_t(i) & cache.mask_i_) | ((std::uint64_t(j) & cache.mask_j_) << cache.shift_j_))];
+    Workspace::Slot& slot = workspace.slots_[std::size_t((std::uint64_t(i) & workspace.mask_i_) |
+                                                         ((std::uint64_t(j) & workspace.mask_j_) << workspace.shift_j_))];
     if (slot.i != i || slot.j != j) {
         const std::array<double, 2> t = tile_position(noise_.grid().vertex(i, j), 0, 0, noise_.width(), noise_.height());
         slot = {i, j, t[0], t[1]};
@@ -146,81 +152,114 @@ const double* TilingRaster::translation(std::int64_t i, std::int64_t j, VertexCa
     return &slot.dx;
 }
 
-const std::array<std::array<double, 2>, 3>& TilingRaster::translations(const TilingGrid::Triangle& triangle, VertexCache& cache) const
-{
-    if (triangle.i[0] != cache.last_i0_ || triangle.j[0] != cache.last_j0_ || triangle.i[1] != cache.last_i1_) {
-        for (int k = 0; k < 3; ++k) {
-            const double* t = translation(triangle.i[std::size_t(k)], triangle.j[std::size_t(k)], cache);
-            cache.last_[std::size_t(k)] = {t[0], t[1]};
-        }
-        cache.last_i0_ = triangle.i[0], cache.last_j0_ = triangle.j[0], cache.last_i1_ = triangle.i[1];
-    }
-    return cache.last_;
-}
-
 template <int Channels>
-inline void TilingRaster::tap(double x, double y, const TilingGrid::Triangle& triangle, const Plan& plan, VertexCache& cache,
-                              float* out) const
+void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& ws, float* out) const
 {
-    // Lanes of the means (1) and of the second moments (0).
+    using P = Pairs<Channels>;
+    const TapPlan& taps = plan.taps;
+    const int n_taps = taps.na * taps.nb;
+    const std::size_t lanes = (count + tiling_raster::max_lanes - 1) / tiling_raster::max_lanes * tiling_raster::max_lanes;
+    // Address-stage buffers, per tap and tile a run of `lanes`: offsets (row iy, row iy + 1, and
+    // the upper level's), fractions (x, y, upper x, upper y) and the weight.
+    const std::size_t runs = std::size_t(n_taps) * 3;
+    ws.x_.resize(lanes);
+    ws.offsets_.resize(runs * 4 * lanes);
+    ws.fractions_.resize(runs * 5 * lanes);
+    auto offsets = [&](std::size_t run, int field) { return ws.offsets_.data() + (run * 4 + std::size_t(field)) * lanes; };
+    auto fractions = [&](std::size_t run, int field) { return ws.fractions_.data() + (run * 5 + std::size_t(field)) * lanes; };
+    const TilingGrid& grid = noise_.grid();
+    static const double two_over_sqrt3 = 2 / std::sqrt(3.0);
+    for (int j = 0, k = 0; j < taps.nb; ++j)
+        for (int i = 0; i < taps.na; ++i, ++k) {
+            // This tap of every position: x + offset on the line py (TilingGrid::triangle's row).
+            for (std::size_t l = 0; l < lanes; ++l)
+                ws.x_[l] = x[std::min(l, count - 1)] + taps.along_a[std::size_t(i)][0] + taps.along_b[std::size_t(j)][0];
+            const double py = y + taps.along_a[std::size_t(i)][1] + taps.along_b[std::size_t(j)][1];
+            tiling_raster::TapRow row{};
+            row.x = ws.x_.data(), row.n = lanes, row.y = py;
+            row.sy = (py * grid.inverse_edges()[1]) * two_over_sqrt3;
+            const double cy = floor_exact(row.sy);
+            row.fy = row.sy - cy;
+            row.inverse_edge_x = grid.inverse_edges()[0];
+            // The vertex columns the positions' triangles use (x is monotone: the ends bound them).
+            const double c_first = floor_exact(ws.x_[0] * row.inverse_edge_x - 0.5 * row.sy);
+            const double c_last = floor_exact(ws.x_[count - 1] * row.inverse_edge_x - 0.5 * row.sy);
+            const double c_min = std::min(c_first, c_last), c_max = std::max(c_first, c_last);
+            const std::size_t columns = std::size_t(c_max - c_min) + 2;
+            ws.rows_.resize(4 * columns);
+            double* rows = ws.rows_.data();
+            const std::int64_t vj = std::int64_t(cy), vi = std::int64_t(c_min);
+            for (std::size_t c = 0; c < columns; ++c)
+                for (int r = 0; r < 2; ++r) {
+                    const double* t = translation(vi + std::int64_t(c), vj + r, ws);
+                    rows[std::size_t(2 * r) * columns + c] = t[0];
+                    rows[std::size_t(2 * r + 1) * columns + c] = t[1];
+                }
+            row.i_min = c_min;
+            row.row0_x = rows, row.row0_y = rows + columns, row.row1_x = rows + 2 * columns, row.row1_y = rows + 3 * columns;
+            row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
+            tiling_raster::TileReads reads{};
+            for (int t = 0; t < 3; ++t) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(t);
+                reads.offset0[t] = offsets(run, 0), reads.offset1[t] = offsets(run, 1);
+                reads.upper_offset0[t] = offsets(run, 2), reads.upper_offset1[t] = offsets(run, 3);
+                reads.fx[t] = fractions(run, 0), reads.fy[t] = fractions(run, 1);
+                reads.upper_fx[t] = fractions(run, 2), reads.upper_fy[t] = fractions(run, 3);
+                reads.weight[t] = fractions(run, 4);
+            }
+            tiling_raster::plan_tap_row(row, reads);
+        }
+    // The lookups and the mixture, position by position. Lanes of the means (1) and of the
+    // second moments (0): a tile adds w (E − ν) to the means and w² C to the moments.
     const Record means = Channels == 1 ? Record{1, 0, 0, 0, 0, 0, 0, 0}
                          : Channels == 2 ? Record{1, 1, 0, 0, 0, 0, 0, 0}
                                          : Record{1, 1, 1, 0, 0, 0, 0, 0};
     const Record moments = splat(1) - means;
-    Record sum{};
-    const std::array<std::array<double, 2>, 3>& shifts = translations(triangle, cache);
-    for (int k = 0; k < 3; ++k) {
-        const double w = triangle.weight[std::size_t(k)];
-        if (w == 0) continue;
-        const std::array<double, 2>& shift = shifts[std::size_t(k)];
-        const double px = x + shift[0], py = y + shift[1];
-        Record sample = bilinear(*plan.lower, px, py);
-        if (plan.upper) sample += splat(plan.t) * (bilinear(*plan.upper, px, py) - sample);
-        // Means (centred) by w, second moments by w².
-        const Record wf = splat(float(w));
-        sum += (wf * (means + wf * moments)) * sample;
-    }
-    store(sum, out);
-}
-
-template <int Channels>
-void TilingRaster::estimate_for(double x, double y, const Plan& plan, VertexCache& cache, float* out) const
-{
-    using P = Pairs<Channels>;
-    const TapPlan& taps = plan.taps;
-    if (taps.na == 1 && taps.nb == 1) return tap<Channels>(x, y, noise_.grid().triangle(x, y), plan, cache, out);
-    // The taps' triangles first, all independent (their square roots and divisions overlap),
-    // then their lookups.
-    const int n = taps.na * taps.nb;
-    std::array<double, TapPlan::max_planned_taps> tx, ty;
-    std::array<TilingGrid::Triangle, TapPlan::max_planned_taps> triangles;
-    for (int j = 0, k = 0; j < taps.nb; ++j)
-        for (int i = 0; i < taps.na; ++i, ++k) {
-            tx[std::size_t(k)] = x + taps.along_a[std::size_t(i)][0] + taps.along_b[std::size_t(j)][0];
-            ty[std::size_t(k)] = y + taps.along_a[std::size_t(i)][1] + taps.along_b[std::size_t(j)][1];
+    const float* lower = plan.lower->data;
+    const float* upper = plan.upper ? plan.upper->data : nullptr;
+    const Record level_t = splat(plan.t);
+    for (std::size_t l = 0; l < count; ++l) {
+        float result[record] = {};
+        for (int k = 0; k < n_taps; ++k) {
+            Record sum{};
+            for (int t = 0; t < 3; ++t) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(t);
+                Record sample = bilinear(lower + offsets(run, 0)[l], lower + offsets(run, 1)[l], fractions(run, 0)[l], fractions(run, 1)[l]);
+                if (upper)
+                    sample += level_t * (bilinear(upper + offsets(run, 2)[l], upper + offsets(run, 3)[l], fractions(run, 2)[l],
+                                                  fractions(run, 3)[l]) -
+                                         sample);
+                const Record w = splat(fractions(run, 4)[l]);
+                sum += (w * (means + w * moments)) * sample;
+            }
+            if (n_taps == 1) {
+                store(sum, result);
+                break;
+            }
+            // MomentMixture::add term for term (TilingNoise::planned_estimate), in single precision.
+            float m[record];
+            store(sum, m);
+            float delta[Channels];
+            for (int a = 0; a < Channels; ++a) delta[a] = m[a] - result[a];
+            const float ratio = plan.ratio[std::size_t(k)], scatter = plan.scatter[std::size_t(k)];
+            for (int a = 0; a < Channels; ++a) result[a] += ratio * delta[a];
+            for (int p = 0; p < P::count; ++p)
+                result[Channels + p] += plan.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
         }
-    for (int k = 0; k < n; ++k) triangles[std::size_t(k)] = noise_.grid().triangle(tx[std::size_t(k)], ty[std::size_t(k)]);
-    // MomentMixture::add term for term (TilingNoise::planned_estimate), in single precision.
-    float result[record] = {};
-    for (int k = 0; k < n; ++k) {
-        float m[record];
-        tap<Channels>(tx[std::size_t(k)], ty[std::size_t(k)], triangles[std::size_t(k)], plan, cache, m);
-        float delta[Channels];
-        for (int a = 0; a < Channels; ++a) delta[a] = m[a] - result[a];
-        const float ratio = plan.ratio[std::size_t(k)], scatter = plan.scatter[std::size_t(k)];
-        for (int a = 0; a < Channels; ++a) result[a] += ratio * delta[a];
-        for (int p = 0; p < P::count; ++p)
-            result[Channels + p] += plan.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
+        float* o = out + l * record;
+        for (int r = 0; r < record; ++r) o[r] = n_taps == 1 || r < Channels ? result[r] : result[r] * plan.inverse_total;
     }
-    for (int r = 0; r < record; ++r) out[r] = r < Channels ? result[r] : result[r] * plan.inverse_total;
 }
 
-void TilingRaster::estimate(double x, double y, const Plan& plan, VertexCache& cache, float* out) const
+void TilingRaster::estimate_row(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const
 {
-    switch (pyramid_.channels()) {
-    case 1: return estimate_for<1>(x, y, plan, cache, out);
-    case 2: return estimate_for<2>(x, y, plan, cache, out);
-    default: return estimate_for<3>(x, y, plan, cache, out);
+    for (std::size_t first = 0; first < count; first += chunk) {
+        const std::size_t n = std::min(chunk, count - first);
+        switch (pyramid_.channels()) {
+        case 1: estimate_chunk<1>(x + first, n, y, plan, workspace, out + first * record); break;
+        case 2: estimate_chunk<2>(x + first, n, y, plan, workspace, out + first * record); break;
+        default: estimate_chunk<3>(x + first, n, y, plan, workspace, out + first * record); break;
+        }
     }
 }
 

@@ -20,6 +20,7 @@
 #pragma once
 
 #include "models/tiling/tiling_noise.h"
+#include "models/tiling/tiling_raster_kernels.h"
 
 #include <array>
 #include <cstdint>
@@ -67,26 +68,27 @@ public:
         TapPlan taps;
         const PackedMomentPyramid::Level* lower = nullptr;
         const PackedMomentPyramid::Level* upper = nullptr;  ///< null when the level is whole
+        tiling_raster::LevelGeometry lower_geometry{}, upper_geometry{};
         float t = 0;                                        ///< towards `upper`
         std::array<float, TapPlan::max_planned_taps> ratio{}, scatter{};
         float weight = 1, inverse_total = 1;
     };
     Plan plan(const Footprint2D& footprint_px, const FootprintSampling& sampling) const;
-    /// Whether estimate() serves this plan: linear interpolation and ≤ TapPlan::max_planned_taps
-    /// taps (else TilingNoise::footprint_estimate, the double path, with plan.taps).
+    /// Whether estimate_row() serves this plan: linear interpolation and ≤
+    /// TapPlan::max_planned_taps taps (else TilingNoise::footprint_estimate, the double path,
+    /// with plan.taps).
     static bool serves(const Plan& plan)
     {
         return plan.taps.interpolation == TexelInterpolation::linear && plan.taps.na * plan.taps.nb <= TapPlan::max_planned_taps;
     }
 
-    /// The vertices' tile translations of one thread's recent lookups (direct-mapped on the
-    /// low bits of the lattice indices): the values are the grid's, so caching changes no bit.
-    /// A raster wants 64 × 16 slots (a 512-pixel row at 4 exemplar pixels per pixel crosses ~30
-    /// vertex columns: fewer slots along i would evict them before the next row); one eval()
-    /// needs only a few.
-    class VertexCache {
+    /// One thread's state: the vertices' tile translations of recent lookups (direct-mapped on
+    /// the low bits of the lattice indices; the values are the grid's, so caching changes no
+    /// bit) and the address stage's buffers. A raster wants 64 × 16 slots (a 512-pixel row at 4
+    /// exemplar pixels per pixel crosses ~30 vertex columns); one eval() needs only a few.
+    class Workspace {
     public:
-        explicit VertexCache(int bits_i = 6, int bits_j = 4);
+        explicit Workspace(int bits_i = 6, int bits_j = 4);
 
     private:
         friend class TilingRaster;
@@ -97,28 +99,25 @@ public:
         std::vector<Slot> slots_;
         std::uint64_t mask_i_, mask_j_;
         int shift_j_;
-        // The last triangle's three translations (a pixel's taps, and the next pixel's, mostly
-        // fall in one triangle), keyed by its first two vertices' i and the first's j.
-        std::int64_t last_i0_ = INT64_MIN, last_j0_ = INT64_MIN, last_i1_ = INT64_MIN;
-        std::array<std::array<double, 2>, 3> last_{};
+        std::vector<double> x_, rows_;
+        std::vector<std::int32_t> offsets_;
+        std::vector<float> fractions_;
     };
 
-    /// The footprint's moments at (x, y) (exemplar pixels), packed as the pyramid's records: the
-    /// means centred on global().mean, then the kept second moments.
-    void estimate(double x, double y, const Plan& plan, VertexCache& cache, float* out) const;
+    /// The footprint's moments at (x[i], y), i < count (exemplar pixels; x monotone, as along a
+    /// raster row), packed as the pyramid's records at out + 8 i: the means centred on
+    /// global().mean, then the kept second moments. A position's values depend on it alone, not
+    /// on count or its place among the x.
+    void estimate_row(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const;
     /// The packed record as Moments (means made absolute; moments not kept are 0).
     Moments unpack(const float* packed) const;
     const TilingNoise& noise() const { return noise_; }
 
 private:
     template <int Channels>
-    void estimate_for(double x, double y, const Plan& plan, VertexCache& cache, float* out) const;
-    template <int Channels>
-    void tap(double x, double y, const TilingGrid::Triangle& triangle, const Plan& plan, VertexCache& cache, float* out) const;
+    void estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const;
     /// Vertex (i, j)'s translation: the tile at that vertex reads the exemplar at p + translation.
-    const double* translation(std::int64_t i, std::int64_t j, VertexCache& cache) const;
-    /// The three translations of a triangle's vertices.
-    const std::array<std::array<double, 2>, 3>& translations(const TilingGrid::Triangle& triangle, VertexCache& cache) const;
+    const double* translation(std::int64_t i, std::int64_t j, Workspace& workspace) const;
 
     const TilingNoise& noise_;
     const PackedMomentPyramid& pyramid_;

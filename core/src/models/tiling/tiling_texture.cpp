@@ -80,10 +80,22 @@ Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
 
 Moments TilingTexture::plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const
 {
-    if (!TilingRaster::serves(plan)) return planes_[std::size_t(k)].footprint_estimate(x, y, plan.taps, cache.tiles);
-    float packed[PackedMomentPyramid::record];
-    rasters_[std::size_t(k)].estimate(x, y, plan, cache.vertices, packed);
-    return rasters_[std::size_t(k)].unpack(packed);
+    Moments m;
+    plane_row(k, &x, 1, y, plan, cache, &m);
+    return m;
+}
+
+void TilingTexture::plane_row(int k, const double* x, std::size_t count, double y, const TilingRaster::Plan& plan, PlaneCache& cache,
+                              Moments* out) const
+{
+    const TilingRaster& raster = rasters_[std::size_t(k)];
+    if (!TilingRaster::serves(plan)) {
+        for (std::size_t i = 0; i < count; ++i) out[i] = planes_[std::size_t(k)].footprint_estimate(x[i], y, plan.taps, cache.tiles);
+        return;
+    }
+    cache.packed.resize(count * PackedMomentPyramid::record);
+    raster.estimate_row(x, count, y, plan, cache.workspace, cache.packed.data());
+    for (std::size_t i = 0; i < count; ++i) out[i] = raster.unpack(cache.packed.data() + i * PackedMomentPyramid::record);
 }
 
 Moments TilingTexture::raster_moments(const Vec2& uv, const Footprint2D& f) const
@@ -121,10 +133,12 @@ void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out
     const double ppu = description().pixels_per_unit;
     const TilingRaster::Plan plan = rasters_[0].plan(region.footprint.scaled(ppu), options_.sampling);
     PlaneCache cache;
+    std::vector<double> x(std::size_t(region.width));
+    for (int i = 0; i < region.width; ++i) x[std::size_t(i)] = region.u(i) * ppu;
+    std::vector<Moments> row(std::size_t(region.width));
     for (int j = 0; j < region.height; ++j) {
-        const double y = region.v(j) * ppu;
-        for (int i = 0; i < region.width; ++i)
-            out.set(std::size_t(j) * region.width + i, colour(plane_moments(0, region.u(i) * ppu, y, plan, cache)));
+        plane_row(0, x.data(), x.size(), region.v(j) * ppu, plan, cache, row.data());
+        for (int i = 0; i < region.width; ++i) out.set(std::size_t(j) * region.width + i, colour(row[std::size_t(i)]));
     }
 }
 
@@ -152,9 +166,8 @@ TilingTexture::SolidPlan TilingTexture::solid_plan(const SurfacePoint& point) co
     return plan;
 }
 
-Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<PlaneCache, 3>& caches) const
+Moments TilingTexture::solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const
 {
-    const double ppu = description().pixels_per_unit;
     const Moments& global = planes_[0].global();
     Moments result;
     result.channels = global.channels;
@@ -162,8 +175,7 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
     for (int k = 0; k < 3; ++k) {
         const double w = plan.weight[k];
         if (w == 0) continue;
-        const int s = k, t = (k + 1) % 3;
-        const Moments m = plane_moments(k, point.p[s] * ppu, point.p[t] * ppu, plan.taps[k], caches[k]);
+        const Moments& m = planes[std::size_t(k)];
         for (int a = 0; a < result.channels; ++a) {
             result.mean[a] += w * (m.mean[a] - global.mean[a]);
             for (int b = 0; b < result.channels; ++b) result.moment(a, b) += w * w * m.moment(a, b);
@@ -174,8 +186,16 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
 
 Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
 {
-    std::array<PlaneCache, 3> caches{PlaneCache(true), PlaneCache(true), PlaneCache(true)};
-    return colour(solid_moments(point, solid_plan(point), caches));
+    const double ppu = description().pixels_per_unit;
+    const SolidPlan plan = solid_plan(point);
+    std::array<Moments, 3> planes;
+    for (int k = 0; k < 3; ++k) {
+        if (plan.weight[std::size_t(k)] == 0) continue;
+        PlaneCache cache(true);
+        planes[std::size_t(k)] = plane_moments(k, point.p[std::size_t(k)] * ppu, point.p[std::size_t((k + 1) % 3)] * ppu,
+                                               plan.taps[std::size_t(k)], cache);
+    }
+    return colour(solid_moments(plan, planes));
 }
 
 void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
@@ -186,12 +206,34 @@ void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput
     point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
     point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
     const SolidPlan plan = solid_plan(point);
+    const double ppu = description().pixels_per_unit;
     std::array<PlaneCache, 3> caches;
-    for (int j = 0; j < plane.height; ++j)
-        for (int i = 0; i < plane.width; ++i) {
-            point.p = {plane.u(i), plane.v(j), region.w};
-            out.set(std::size_t(j) * plane.width + i, colour(solid_moments(point, plan, caches)));
+    std::array<std::vector<Moments>, 3> rows;
+    std::vector<double> u(std::size_t(plane.width));
+    for (int i = 0; i < plane.width; ++i) u[std::size_t(i)] = plane.u(i) * ppu;
+    for (int j = 0; j < plane.height; ++j) {
+        // Plane k reads (p_k, p_(k+1)): planes 0 (u, v) and 1 (v, w) are rows of constant
+        // second coordinate; plane 2 (w, u) is not, and goes point by point.
+        const double v = plane.v(j) * ppu, w = region.w * ppu;
+        for (int k = 0; k < 3; ++k) {
+            if (plan.weight[std::size_t(k)] == 0) continue;
+            std::vector<Moments>& row = rows[std::size_t(k)];
+            row.resize(u.size());
+            if (k == 0) plane_row(0, u.data(), u.size(), v, plan.taps[0], caches[0], row.data());
+            if (k == 1) {
+                caches[1].x.assign(u.size(), v);
+                plane_row(1, caches[1].x.data(), u.size(), w, plan.taps[1], caches[1], row.data());
+            }
+            if (k == 2)
+                for (std::size_t i = 0; i < u.size(); ++i) plane_row(2, &w, 1, u[i], plan.taps[2], caches[2], &row[i]);
         }
+        std::array<Moments, 3> planes;
+        for (int i = 0; i < plane.width; ++i) {
+            for (int k = 0; k < 3; ++k)
+                if (plan.weight[std::size_t(k)] != 0) planes[std::size_t(k)] = rows[std::size_t(k)][std::size_t(i)];
+            out.set(std::size_t(j) * plane.width + i, colour(solid_moments(plan, planes)));
+        }
+    }
 }
 
 }  // namespace stochtex

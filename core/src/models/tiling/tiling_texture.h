@@ -88,16 +88,22 @@ private:
     };
     /// One thread's caches of one plane's grid (the packed path's and the double path's).
     struct PlaneCache {
-        TilingRaster::VertexCache vertices;
+        TilingRaster::Workspace workspace;
         TileCache tiles;
+        std::vector<double> x;
+        std::vector<float> packed;
         PlaneCache() = default;
         /// A cache for one evaluation (its taps share a few vertices).
-        explicit PlaneCache(bool single) : vertices(single ? 2 : 6, single ? 2 : 4) {}
+        explicit PlaneCache(bool single) : workspace(single ? 2 : 6, single ? 2 : 4) {}
     };
     SolidPlan solid_plan(const SurfacePoint& point) const;
-    Moments solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<PlaneCache, 3>& caches) const;
+    /// The solid blend of the planes' moments (planes of weight 0 are not read).
+    Moments solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const;
     /// Plane k's moments at (x, y) exemplar pixels with a planned footprint.
     Moments plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const;
+    /// plane_moments() at (x[i], y), i < count (x monotone), into out[i].
+    void plane_row(int k, const double* x, std::size_t count, double y, const TilingRaster::Plan& plan, PlaneCache& cache,
+                   Moments* out) const;
 
     TilingFilterOptions options_;
     TilingOutput output_;
