@@ -209,46 +209,14 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
             }
             tiling_raster::plan_tap_row(row, reads);
         }
-    // The lookups and the mixture, position by position. Lanes of the means (1) and of the
-    // second moments (0): a tile adds w (E − ν) to the means and w² C to the moments.
-    const Record means = Channels == 1 ? Record{1, 0, 0, 0, 0, 0, 0, 0}
-                         : Channels == 2 ? Record{1, 1, 0, 0, 0, 0, 0, 0}
-                                         : Record{1, 1, 1, 0, 0, 0, 0, 0};
-    const Record moments = splat(1) - means;
-    const float* lower = plan.lower->data;
-    const float* upper = plan.upper ? plan.upper->data : nullptr;
-    const Record level_t = splat(plan.t);
-    for (std::size_t l = 0; l < count; ++l) {
-        float result[record] = {};
-        for (int k = 0; k < n_taps; ++k) {
-            Record sum{};
-            for (int t = 0; t < 3; ++t) {
-                const std::size_t run = std::size_t(k) * 3 + std::size_t(t);
-                Record sample = bilinear(lower + offsets(run, 0)[l], lower + offsets(run, 1)[l], fractions(run, 0)[l], fractions(run, 1)[l]);
-                if (upper)
-                    sample += level_t * (bilinear(upper + offsets(run, 2)[l], upper + offsets(run, 3)[l], fractions(run, 2)[l],
-                                                  fractions(run, 3)[l]) -
-                                         sample);
-                const Record w = splat(fractions(run, 4)[l]);
-                sum += (w * (means + w * moments)) * sample;
-            }
-            if (n_taps == 1) {
-                store(sum, result);
-                break;
-            }
-            // MomentMixture::add term for term (TilingNoise::planned_estimate), in single precision.
-            float m[record];
-            store(sum, m);
-            float delta[Channels];
-            for (int a = 0; a < Channels; ++a) delta[a] = m[a] - result[a];
-            const float ratio = plan.ratio[std::size_t(k)], scatter = plan.scatter[std::size_t(k)];
-            for (int a = 0; a < Channels; ++a) result[a] += ratio * delta[a];
-            for (int p = 0; p < P::count; ++p)
-                result[Channels + p] += plan.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
-        }
-        float* o = out + l * record;
-        for (int r = 0; r < record; ++r) o[r] = n_taps == 1 || r < Channels ? result[r] : result[r] * plan.inverse_total;
-    }
+    // The lookups and the mixture, position by position.
+    tiling_raster::TapSums sums{};
+    sums.lower = plan.lower->data, sums.upper = plan.upper ? plan.upper->data : nullptr, sums.t = plan.t;
+    sums.taps = n_taps, sums.channels = Channels;
+    sums.offsets = ws.offsets_.data(), sums.fractions = ws.fractions_.data(), sums.lanes = lanes;
+    sums.ratio = plan.ratio.data(), sums.scatter = plan.scatter.data(), sums.weight = plan.weight, sums.inverse_total = plan.inverse_total;
+    sums.pairs = P::count, sums.first = P::first, sums.second = P::second;
+    tiling_raster::accumulate_taps(sums, count, out);
 }
 
 void TilingRaster::estimate_row(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const

@@ -68,6 +68,60 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
     }
 }
 
+void AccumulateTaps(const TapSums& s, std::size_t count, float* out)
+{
+    constexpr int record = 8;
+    const hn::CappedTag<float, record> df;
+    const int step = int(hn::Lanes(df)), parts = record / step;
+    float means[record] = {}, moments[record] = {};
+    for (int r = 0; r < record; ++r) (r < s.channels ? means : moments)[r] = 1;
+    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * s.lanes; };
+    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 5 + std::size_t(field)) * s.lanes; };
+    const auto level_t = hn::Set(df, s.t);
+    for (std::size_t l = 0; l < count; ++l) {
+        float result[record] = {};
+        for (int k = 0; k < s.taps; ++k) {
+            hn::Vec<decltype(df)> sum[record] = {};
+            for (int h = 0; h < parts; ++h) sum[h] = hn::Zero(df);
+            for (int tile = 0; tile < 3; ++tile) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
+                const float w = at_fractions(run, 4)[l];
+                const auto vw = hn::Set(df, w);
+                auto bilinear = [&](const float* data, int field, int fraction, int h) {
+                    const float tx = at_fractions(run, fraction)[l], ty = at_fractions(run, fraction + 1)[l];
+                    const float* r0 = data + at_offsets(run, field)[l] + h * step;
+                    const float* r1 = data + at_offsets(run, field + 1)[l] + h * step;
+                    const auto vx = hn::Set(df, tx), vy = hn::Set(df, ty), sx = hn::Set(df, 1 - tx), sy = hn::Set(df, 1 - ty);
+                    const auto low = hn::Add(hn::Mul(sx, hn::LoadU(df, r0)), hn::Mul(vx, hn::LoadU(df, r0 + record)));
+                    const auto high = hn::Add(hn::Mul(sx, hn::LoadU(df, r1)), hn::Mul(vx, hn::LoadU(df, r1 + record)));
+                    return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
+                };
+                for (int h = 0; h < parts; ++h) {
+                    auto sample = bilinear(s.lower, 0, 0, h);
+                    if (s.upper) sample = hn::Add(sample, hn::Mul(level_t, hn::Sub(bilinear(s.upper, 2, 2, h), sample)));
+                    const auto weights = hn::Mul(vw, hn::Add(hn::LoadU(df, means + h * step), hn::Mul(vw, hn::LoadU(df, moments + h * step))));
+                    sum[h] = hn::Add(sum[h], hn::Mul(weights, sample));
+                }
+            }
+            float m[record];
+            for (int h = 0; h < parts; ++h) hn::StoreU(sum[h], df, m + h * step);
+            if (s.taps == 1) {
+                for (int r = 0; r < record; ++r) result[r] = m[r];
+                break;
+            }
+            // MomentMixture::add term for term (TilingNoise::planned_estimate), in single precision.
+            float delta[record];
+            for (int a = 0; a < s.channels; ++a) delta[a] = m[a] - result[a];
+            const float ratio = s.ratio[k], scatter = s.scatter[k];
+            for (int a = 0; a < s.channels; ++a) result[a] += ratio * delta[a];
+            for (int p = 0; p < s.pairs; ++p)
+                result[s.channels + p] += s.weight * m[s.channels + p] + scatter * (delta[s.first[p]] * delta[s.second[p]]);
+        }
+        float* o = out + l * record;
+        for (int r = 0; r < record; ++r) o[r] = s.taps == 1 || r < s.channels ? result[r] : result[r] * s.inverse_total;
+    }
+}
+
 }  // namespace stochtex::tiling_raster::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -75,6 +129,9 @@ HWY_AFTER_NAMESPACE();
 namespace stochtex::tiling_raster {
 
 HWY_EXPORT(PlanTapRow);
+HWY_EXPORT(AccumulateTaps);
+
+void accumulate_taps(const TapSums& sums, std::size_t count, float* out) { HWY_DYNAMIC_DISPATCH(AccumulateTaps)(sums, count, out); }
 
 void plan_tap_row(const TapRow& row, const TileReads& out) { HWY_DYNAMIC_DISPATCH(PlanTapRow)(row, out); }
 

@@ -65,4 +65,30 @@ struct TileReads {
 
 void plan_tap_row(const TapRow& row, const TileReads& out);
 
+/// The lookups and the mixture of `count` positions from plan_tap_row's reads, stored as
+/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `lanes` values per
+/// field, offsets at offsets + (4 r + f) · lanes (f: lower row iy, lower row iy + 1, upper, upper),
+/// fractions at fractions + (5 r + f) · lanes (f: lower x, lower y, upper x, upper y, weight).
+/// Per position and tap, the three tiles' bilinear records (8 floats: lane-wise, in
+/// vectors of up to 8), blended towards the upper level by t, are summed as w · (means + w ·
+/// moments) · record (`means` 1 on the mean lanes, 0 on the moment lanes); the taps then
+/// combine as MomentMixture::add with the plan's ratio, scatter and weight, the moments
+/// divided by the weights' total at the end (one tap: its sum as it is).
+struct TapSums {
+    const float* lower;
+    const float* upper;  ///< null: one level
+    float t;
+    int taps, channels;
+    const std::int32_t* offsets;
+    const float* fractions;
+    std::size_t lanes;
+    const float* ratio;
+    const float* scatter;
+    float weight, inverse_total;
+    int pairs;
+    const int* first;  ///< moment lane channels + p is moment (first[p], second[p])
+    const int* second;
+};
+void accumulate_taps(const TapSums& sums, std::size_t count, float* out);
+
 }  // namespace stochtex::tiling_raster

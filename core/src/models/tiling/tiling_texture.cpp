@@ -124,6 +124,14 @@ Rgb TilingTexture::colour(const Moments& m) const
     throw Error("tiling texture: unknown output");
 }
 
+Rgb TilingTexture::mean() const
+{
+    const Moments m = planes_[0].global();
+    if (output_ == TilingOutput::colour_map)
+        return colour_map_->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, options_.colour_map);
+    return colour(m);
+}
+
 Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(raster_moments(uv, footprint)); }
 
 void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const

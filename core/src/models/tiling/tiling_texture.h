@@ -64,7 +64,10 @@ public:
     Rgb eval_solid(const SurfacePoint& point) const override;
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
-    Rgb mean() const override { return colour(planes_[0].global()); }
+    /// colour() of the exemplar's exact moments; a colour map through the reference lookup
+    /// (ColourMapFilter::filtered), so the mean written in a .stex does not depend on the packed
+    /// lookup's rounding.
+    Rgb mean() const override;
 
     /// The blended channels' filtered moments at uv over the footprint (2D), all of them, in
     /// double precision (TilingNoise::footprint_estimate: the reference of the packed path).
