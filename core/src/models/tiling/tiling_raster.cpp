@@ -109,6 +109,11 @@ TilingRaster::Workspace::Workspace(int bits_i, int bits_j)
 {
 }
 
+void TilingRaster::Workspace::invalidate()
+{
+    for (Slot& slot : slots_) slot.i = slot.j = INT64_MIN;
+}
+
 TilingRaster::TilingRaster(const TilingNoise& noise, const PackedMomentPyramid& pyramid)
     : noise_(noise), pyramid_(pyramid), pairs_(packed_pairs(pyramid.channels()))
 {

@@ -89,6 +89,8 @@ public:
     class Workspace {
     public:
         explicit Workspace(int bits_i = 6, int bits_j = 4);
+        /// Forgets the cached translations (before serving another grid), keeps the buffers.
+        void invalidate();
 
     private:
         friend class TilingRaster;

@@ -78,6 +78,17 @@ Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
                                          options_.sampling);
 }
 
+TilingTexture::PlaneCache& TilingTexture::single_cache(int k)
+{
+    // One per thread and plane, its buffers kept between point evaluations (no allocation per
+    // eval()); the translations are forgotten each time, since another texture may have used it.
+    thread_local std::array<PlaneCache, 3> caches{PlaneCache(true), PlaneCache(true), PlaneCache(true)};
+    PlaneCache& cache = caches[std::size_t(k)];
+    cache.workspace.invalidate();
+    cache.tiles = TileCache();
+    return cache;
+}
+
 Moments TilingTexture::plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const
 {
     Moments m;
@@ -101,7 +112,7 @@ void TilingTexture::plane_row(int k, const double* x, std::size_t count, double 
 Moments TilingTexture::raster_moments(const Vec2& uv, const Footprint2D& f) const
 {
     const double ppu = description().pixels_per_unit;
-    PlaneCache cache(true);
+    PlaneCache& cache = single_cache(0);
     return plane_moments(0, uv[0] * ppu, uv[1] * ppu, rasters_[0].plan(f.scaled(ppu), options_.sampling), cache);
 }
 
@@ -199,9 +210,8 @@ Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
     std::array<Moments, 3> planes;
     for (int k = 0; k < 3; ++k) {
         if (plan.weight[std::size_t(k)] == 0) continue;
-        PlaneCache cache(true);
         planes[std::size_t(k)] = plane_moments(k, point.p[std::size_t(k)] * ppu, point.p[std::size_t((k + 1) % 3)] * ppu,
-                                               plan.taps[std::size_t(k)], cache);
+                                               plan.taps[std::size_t(k)], single_cache(k));
     }
     return colour(solid_moments(plan, planes));
 }

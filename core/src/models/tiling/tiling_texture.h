@@ -99,6 +99,8 @@ private:
         /// A cache for one evaluation (its taps share a few vertices).
         explicit PlaneCache(bool single) : workspace(single ? 2 : 6, single ? 2 : 4) {}
     };
+    /// A point evaluation's cache of plane k (this thread's, emptied).
+    static PlaneCache& single_cache(int k);
     SolidPlan solid_plan(const SurfacePoint& point) const;
     /// The solid blend of the planes' moments (planes of weight 0 are not read).
     Moments solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const;
