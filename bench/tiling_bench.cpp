@@ -273,18 +273,17 @@ public:
             const auto cpu = cpu_->rates.find(name);
             if (cpu != cpu_->rates.end()) std::printf("  (%7.3f per CPU-s)", cpu->second);
             if (name.rfind("Render/Raster/", 0) == 0) {
-                const std::string twin = "Render/Point/" + name.substr(std::strlen("Render/Raster/"));
-                const Entry* reference = find(twin);
-                const auto reference_cpu = cpu_->rates.find(twin);
-                if (reference && reference->rate > 0) std::printf("  %6.2fx eval() per pixel", entry.rate / reference->rate);
-                if (cpu != cpu_->rates.end() && reference_cpu != cpu_->rates.end() && reference_cpu->second > 0)
-                    std::printf(" (%.2fx per CPU-s)", cpu->second / reference_cpu->second);
-                const std::string before = "Render/Double/" + name.substr(std::strlen("Render/Raster/"));
-                const Entry* previous = find(before);
-                const auto previous_cpu = cpu_->rates.find(before);
-                if (previous && previous->rate > 0) std::printf("  %6.2fx previous path", entry.rate / previous->rate);
-                if (cpu != cpu_->rates.end() && previous_cpu != cpu_->rates.end() && previous_cpu->second > 0)
-                    std::printf(" (%.2fx per CPU-s)", cpu->second / previous_cpu->second);
+                // The speed-up over a reference of the same kind, in wall and CPU time.
+                auto against = [&](const char* path, const char* what) {
+                    const std::string twin = std::string("Render/") + path + "/" + name.substr(std::strlen("Render/Raster/"));
+                    const Entry* reference = find(twin);
+                    const auto reference_cpu = cpu_->rates.find(twin);
+                    if (reference && reference->rate > 0) std::printf("  %6.2fx %s", entry.rate / reference->rate, what);
+                    if (cpu != cpu_->rates.end() && reference_cpu != cpu_->rates.end() && reference_cpu->second > 0)
+                        std::printf(" (%.2fx per CPU-s)", cpu->second / reference_cpu->second);
+                };
+                against("Point", "eval() per pixel");
+                against("Double", "previous path");
             }
             std::printf("\n");
         }

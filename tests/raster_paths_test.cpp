@@ -2,9 +2,10 @@
 // and eval_solid_region are bit-identical to eval() / eval_solid() for every tiling output
 // (colour, colour map, phasor), for multi-tap and anisotropic footprints, periodic or not, and
 // for the ptm model bounded and unbounded, odd map sizes included; renders are bit-identical for
-// any thread count; and the tabulated histogram maps of the tiling colour output stay within
-// their stated tolerance of the Gauss–Hermite rule they tabulate (and no further from the true
-// expectation than that rule).
+// any thread count; the packed single-precision tiling path stays within its stated tolerance
+// (in σ) of the double estimator and reference colour-map lookup; and the tabulated histogram
+// maps of the tiling colour output stay within their stated tolerance of the Gauss–Hermite
+// rule they tabulate (and no further from the true expectation than that rule).
 #include "test_support.h"
 
 #include "colour/tabulated_colour_mapping.h"

@@ -89,31 +89,6 @@ TileBlend TilingGrid::blend_with(double x, double y, const Draw& draw) const
     return result;
 }
 
-TilingGrid::Triangle TilingGrid::triangle(double x, double y) const
-{
-    // blend_with()'s skew and barycentrics; x / edge as x · (1 / edge), 2 / √3 and 1 / ‖B‖ taken
-    // once: one square root and one division per point instead of five divisions and a root.
-    static const double two_over_sqrt3 = 2 / sqrt3;
-    const double sy = (y * inverse_edge_[1]) * two_over_sqrt3, sx = x * inverse_edge_[0] - 0.5 * sy;
-    const double cx = floor_exact(sx), cy = floor_exact(sy);
-    const double fx = sx - cx, fy = sy - cy;
-    const std::int64_t i = std::int64_t(cx), j = std::int64_t(cy);
-    Triangle t;
-    std::array<double, 3> b;
-    if (fx + fy < 1) {
-        t.i = {i, i + 1, i};
-        t.j = {j, j, j + 1};
-        b = {1 - fx - fy, fx, fy};
-    } else {
-        t.i = {i + 1, i + 1, i};
-        t.j = {j + 1, j, j + 1};
-        b = {fx + fy - 1, 1 - fy, 1 - fx};
-    }
-    const double inverse_norm = 1 / std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-    for (int k = 0; k < 3; ++k) t.weight[k] = b[k] * inverse_norm;
-    return t;
-}
-
 TileVertex TilingGrid::vertex(std::int64_t i, std::int64_t j) const
 {
     TileVertex v;

@@ -67,21 +67,12 @@ public:
     /// The same blend, the vertices' offsets looked up in (and added to) `cache`.
     TileBlend blend(double x, double y, TileCache& cache) const;
 
-    /// The triangle holding (x, y) without the vertices' draws: lattice indices and weights
-    /// (Σ w² = 1). blend()'s geometry with the divisions replaced by products with reciprocals
-    /// taken once (the float raster path of the tiling model, tiling_raster.h): the weights may
-    /// differ from blend()'s in the last bits, and a point on an edge may fall in the triangle
-    /// next to blend()'s, where the differing vertex has weight 0.
-    struct Triangle {
-        std::array<std::int64_t, 3> i, j;
-        std::array<double, 3> weight;
-    };
-    Triangle triangle(double x, double y) const;
     /// Vertex (i, j) as blend() gives it (centre, offset, period shift; weight 0).
     TileVertex vertex(std::int64_t i, std::int64_t j) const;
     /// The edges actually used along x and y (differ from `edge` only in the periodic form).
     const std::array<double, 2>& edges() const { return edge_; }
-    /// 1 / edges(), for triangle() and its vectorised form (tiling_raster_kernels.h).
+    /// 1 / edges(): the tiling raster's triangle geometry multiplies by them
+    /// (models/tiling/tiling_raster_kernels.h).
     const std::array<double, 2>& inverse_edges() const { return inverse_edge_; }
     /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
     std::uint32_t seed() const { return seed_; }
@@ -94,7 +85,7 @@ private:
 
     std::uint32_t seed_;
     std::array<double, 2> edge_;
-    std::array<double, 2> inverse_edge_;  // 1 / edge_, for triangle()
+    std::array<double, 2> inverse_edge_;  // 1 / edge_
     std::int64_t cells_x_ = 0, repeats_y_ = 0;  // periodic lattice (n, m); 0: not periodic
 };
 

@@ -4,29 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace stochtex {
 
 namespace {
 
 constexpr int record = PackedMomentPyramid::record;
-
-/// One texel record as a vector (GCC/Clang vector extension: two SSE registers on the x86-64
-/// baseline, one AVX register where the build targets it). Lane-wise products and sums only, so
-/// every target computes the same bits.
-typedef float Record __attribute__((vector_size(record * sizeof(float))));
-
-inline Record load(const float* p)
-{
-    Record r;
-    std::memcpy(&r, p, sizeof r);
-    return r;
-}
-
-inline void store(const Record& r, float* p) { std::memcpy(p, &r, sizeof r); }
-
-inline Record splat(float v) { return Record{v, v, v, v, v, v, v, v}; }
 
 /// packed_pairs() at compile time.
 template <int Channels>
@@ -46,14 +29,6 @@ struct Pairs<3> {  // the variances only: what the colour output reads
     static constexpr int count = 3;
     static constexpr int first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
 };
-
-/// The bilinear blend of a texel pair (r0: row iy, r1: row iy + 1; each two adjacent records).
-inline Record bilinear(const float* r0, const float* r1, float tx, float ty)
-{
-    const Record vx = splat(tx), vy = splat(ty), sx = splat(1 - tx), sy = splat(1 - ty);
-    const Record low = sx * load(r0) + vx * load(r0 + record), high = sx * load(r1) + vx * load(r1 + record);
-    return sy * low + vy * high;
-}
 
 /// Pixels per pass of the address stage (its buffers hold taps × 3 tiles × this many lanes).
 constexpr std::size_t chunk = 64;

@@ -9,14 +9,16 @@
 //     only the second moments an output reads (3 channels: the variances, all colour uses; 1–2
 //     channels: all of them); each row holds one extra record, a copy of its first, so a
 //     bilinear lookup's two texels along x are always adjacent — two reads of 16 floats;
-//   - the grid's vertices go through a cache of their whole-pixel tile translations (the shift
-//     and the period shift as one vector, drawn once), and the triangle's geometry multiplies
-//     by reciprocals (TilingGrid::triangle);
-//   - the level choice, the level's sizes, masks and scales, and the mixture's ratios as floats
-//     are resolved once per footprint (Plan).
-// Accuracy against the double estimator (tests/raster_paths_test.cpp): within 1e-5 σ of each
-// channel (measured: docs/models/tiling.md, "Precision"). eval() and the batch methods all run
-// this code, so they stay bit-identical to each other, for any thread count and region split.
+//   - positions go by rows: a raster row's taps of one index lie on one line, which fixes the
+//     triangle row and the two vertex rows whose tile translations (the whole-pixel shift and
+//     the period shift as one vector, drawn once and cached per thread) the line reads; the
+//     triangles, weights and lookup addresses are computed across the row's pixels and the
+//     lookups made per pixel, both by Highway kernels (tiling_raster_kernels.h);
+//   - the level choice, the level's geometry and the mixture's ratios as floats are resolved
+//     once per footprint (Plan).
+// Accuracy against the double estimator (tests/raster_paths_test.cpp): ≤ 1.9e-4 σ of each RGB
+// channel (docs/models/tiling.md, "Precision"). eval() and the batch methods all run this code,
+// so they stay bit-identical to each other, for any thread count and region split.
 #pragma once
 
 #include "models/tiling/tiling_noise.h"

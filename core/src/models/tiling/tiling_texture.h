@@ -19,9 +19,11 @@
 // Colour's histogram maps are tabulated over (mean, spread) (tabulated_colour_mapping.h), for
 // eval() and the batch methods alike.
 //
-// Batch evaluation: eval_region / eval_solid_region plan the footprint's taps once (their
-// count, offsets and pyramid level) and share the triangle grid's vertex draws along the rows
-// (TileCache); per pixel the arithmetic is eval()'s, so values are bit-identical to it.
+// Evaluation: every method runs the packed single-precision estimator (tiling_raster.h) —
+// eval_region and eval_solid_region a row of positions at a time with the footprint's taps
+// planned once, eval() and eval_solid() one position — so values are bit-identical between
+// them; moments() is the double estimator (TilingNoise), their reference. Footprints it does
+// not serve (the mixture interpolation, more than 64 taps) take the double path everywhere.
 //
 // Solid: no solid exemplar exists, so eval_solid() blends three axis-aligned planar tilings
 // (independent grids) with weights ∝ n_k⁴ normalised so that Σ ω_k² = 1: variance-preserving
