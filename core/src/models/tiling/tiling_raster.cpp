@@ -138,6 +138,15 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
     using P = Pairs<Channels>;
     const TapPlan& taps = plan.taps;
     const int n_taps = taps.na * taps.nb;
+    // Positions much farther apart than the triangles (a strongly minified row) would make the
+    // translation tables span many unused vertex columns: split the run until they do not (a
+    // position's values do not depend on the run it is in).
+    if (count > 1 && std::abs(x[count - 1] - x[0]) * noise_.grid().inverse_edges()[0] > double(2 * count + 16)) {
+        const std::size_t half = count / 2;
+        estimate_chunk<Channels>(x, half, y, plan, ws, out);
+        estimate_chunk<Channels>(x + half, count - half, y, plan, ws, out + half * record);
+        return;
+    }
     const std::size_t lanes = (count + tiling_raster::max_lanes - 1) / tiling_raster::max_lanes * tiling_raster::max_lanes;
     // Address-stage buffers, per tap and tile a run of `lanes`: offsets (row iy, row iy + 1, and
     // the upper level's), fractions (x, y, upper x, upper y) and the weight.
