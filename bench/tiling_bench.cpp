@@ -3,7 +3,12 @@
 // same texture evaluated one eval() per pixel (Texture's default batch loop) — in the same run.
 //
 //   Raster/<kind>/threads:N   render(): the model's eval_region (rows share the tap plan, the
-//                              triangle grid's vertices, the tabulated colour maps)
+//                              triangle grid's vertices, the tabulated colour maps; tiling: the
+//                              single-precision packed estimator, TilingRaster)
+//   Double/<kind>/threads:N   tiling only: the previous raster path, measured in the same run —
+//                              the double estimator (TilingNoise::footprint_estimate with the plan
+//                              and vertex cache shared along rows) and the reference colour-map
+//                              lookup (ColourMapFilter::filtered)
 //   Point/<kind>/threads:N    the same raster, one eval() per pixel (the reference)
 //   Part/<kind>/...           one thread, per pixel: the filtered moments alone, the colour alone
 //                              (where the time goes)
@@ -87,6 +92,35 @@ const TextureDescription& description(const std::string& kind)
     return cache.emplace(kind, d).first->second;
 }
 
+/// The previous tiling raster path (double estimator, reference colour-map lookup): the "before"
+/// of docs/models/tiling.md's speed table, measured in the same run as the packed path.
+class DoublePath final : public Texture {
+public:
+    explicit DoublePath(const TilingTexture& inner) : Texture(inner.description()), inner_(inner) {}
+    Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override { return colour(inner_.moments(uv, footprint)); }
+    Rgb eval_solid(const SurfacePoint& point) const override { return inner_.eval_solid(point); }
+    Rgb mean() const override { return inner_.mean(); }
+    void eval_region(const RasterRegion& region, const RgbOutput& out) const override
+    {
+        const double ppu = description().pixels_per_unit;
+        const TapPlan plan = inner_.noise().plan(region.footprint.scaled(ppu), inner_.options().sampling);
+        TileCache cache;
+        for (int j = 0; j < region.height; ++j)
+            for (int i = 0; i < region.width; ++i)
+                out.set(std::size_t(j) * region.width + i,
+                        colour(inner_.noise().footprint_estimate(region.u(i) * ppu, region.v(j) * ppu, plan, cache)));
+    }
+
+private:
+    Rgb colour(const Moments& m) const
+    {
+        const ColourMapFilter* map = inner_.colour_map_filter();
+        if (!map) return inner_.colour(m);
+        return map->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, inner_.options().colour_map);
+    }
+    const TilingTexture& inner_;
+};
+
 using stochtex::bench::PointByPoint;  // the reference: eval() once per pixel
 
 RenderSettings settings_for(const Texture& texture, int threads)
@@ -115,18 +149,28 @@ double process_cpu_seconds()
     return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) + 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-void Render(benchmark::State& state, const std::string& kind, bool raster)
+enum class Path { raster, double_path, point };
+
+void Render(benchmark::State& state, const std::string& kind, Path path)
 {
     const std::unique_ptr<Texture> texture = make_texture(description(kind));
     const PointByPoint reference(*texture);
-    const Texture& evaluated = raster ? *texture : static_cast<const Texture&>(reference);
+    const auto* tiling = dynamic_cast<const TilingTexture*>(texture.get());
+    std::unique_ptr<DoublePath> previous;
+    if (tiling) previous = std::make_unique<DoublePath>(*tiling);
+    if (path == Path::double_path && !previous) {
+        state.SkipWithError("not a tiling texture");
+        return;
+    }
+    const Texture& evaluated = path == Path::raster ? *texture : path == Path::point ? static_cast<const Texture&>(reference) : *previous;
     const RenderSettings settings = settings_for(*texture, int(state.range(0)));
     const double cpu_start = process_cpu_seconds();
     for (auto _ : state) benchmark::DoNotOptimize(render(evaluated, settings).pixels.data());
     const double pixels = double(settings.width) * settings.height;
     state.counters["Mpix/s"] = benchmark::Counter(pixels * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["Mpix/cpu-s"] = pixels * 1e-6 * double(state.iterations()) / std::max(1e-9, process_cpu_seconds() - cpu_start);
-    state.SetLabel(label(kind, raster ? "eval_region" : "eval() per pixel", int(state.range(0))));
+    state.SetLabel(label(kind, path == Path::raster ? "eval_region" : path == Path::point ? "eval() per pixel" : "previous double path",
+                         int(state.range(0))));
 }
 
 /// Where the time of one tiling eval() goes: the filtered moments, then their colour.
@@ -145,11 +189,11 @@ void Part(benchmark::State& state, const std::string& kind, bool colour_only)
             if (colour_only)
                 benchmark::DoNotOptimize(texture.colour(moments[i]));
             else
-                benchmark::DoNotOptimize(texture.moments(
+                benchmark::DoNotOptimize(texture.raster_moments(
                     {(i % 64 + 0.5) * settings.units_per_pixel, (i / 64 + 0.5) * settings.units_per_pixel}, footprint));
         }
     state.counters["Mpix/s"] = benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
-    state.SetLabel(kind + ": " + (colour_only ? "colour() of given moments" : "moments() (taps, grid, pyramid)") +
+    state.SetLabel(kind + ": " + (colour_only ? "colour() of given moments" : "raster_moments() (taps, grid, packed pyramid; plan per call)") +
                    ", 1 thread");
 }
 
@@ -178,12 +222,17 @@ BENCHMARK_CAPTURE(ColourStep, exact, false)->UseRealTime()->Unit(benchmark::kMic
 BENCHMARK_CAPTURE(ColourStep, tabulated, true)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 #define STOCHTEX_RENDER(kind)                                                                                           \
-    BENCHMARK_CAPTURE(Render, Raster/kind, std::string(#kind), true)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond); \
-    BENCHMARK_CAPTURE(Render, Point/kind, std::string(#kind), false)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
+    BENCHMARK_CAPTURE(Render, Raster/kind, std::string(#kind), Path::raster)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond); \
+    BENCHMARK_CAPTURE(Render, Point/kind, std::string(#kind), Path::point)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
+#define STOCHTEX_RENDER_PREVIOUS(kind)                                                                                  \
+    BENCHMARK_CAPTURE(Render, Double/kind, std::string(#kind), Path::double_path)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
 
 STOCHTEX_RENDER(colour);
+STOCHTEX_RENDER_PREVIOUS(colour);
 STOCHTEX_RENDER(colour_map);
+STOCHTEX_RENDER_PREVIOUS(colour_map);
 STOCHTEX_RENDER(phasor);
+STOCHTEX_RENDER_PREVIOUS(phasor);
 STOCHTEX_RENDER(ptm);
 STOCHTEX_RENDER(ptm_unbounded);
 BENCHMARK_CAPTURE(Part, colour/moments, std::string("colour"), false)->UseRealTime()->Unit(benchmark::kMicrosecond);
@@ -215,12 +264,17 @@ public:
             const auto cpu = cpu_->rates.find(name);
             if (cpu != cpu_->rates.end()) std::printf("  (%7.3f per CPU-s)", cpu->second);
             if (name.rfind("Render/Raster/", 0) == 0) {
-                const std::string twin = "Render/Point/" + name.substr(std::strlen("Render/Raster/"));
-                const Entry* reference = find(twin);
-                const auto reference_cpu = cpu_->rates.find(twin);
-                if (reference && reference->rate > 0) std::printf("  %6.2fx eval() per pixel", entry.rate / reference->rate);
-                if (cpu != cpu_->rates.end() && reference_cpu != cpu_->rates.end() && reference_cpu->second > 0)
-                    std::printf(" (%.2fx per CPU-s)", cpu->second / reference_cpu->second);
+                // The speed-up over a reference of the same kind, in wall and CPU time.
+                auto against = [&](const char* path, const char* what) {
+                    const std::string twin = std::string("Render/") + path + "/" + name.substr(std::strlen("Render/Raster/"));
+                    const Entry* reference = find(twin);
+                    const auto reference_cpu = cpu_->rates.find(twin);
+                    if (reference && reference->rate > 0) std::printf("  %6.2fx %s", entry.rate / reference->rate, what);
+                    if (cpu != cpu_->rates.end() && reference_cpu != cpu_->rates.end() && reference_cpu->second > 0)
+                        std::printf(" (%.2fx per CPU-s)", cpu->second / reference_cpu->second);
+                };
+                against("Point", "eval() per pixel");
+                against("Double", "previous path");
             }
             std::printf("\n");
         }

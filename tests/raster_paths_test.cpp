@@ -2,9 +2,10 @@
 // and eval_solid_region are bit-identical to eval() / eval_solid() for every tiling output
 // (colour, colour map, phasor), for multi-tap and anisotropic footprints, periodic or not, and
 // for the ptm model bounded and unbounded, odd map sizes included; renders are bit-identical for
-// any thread count; and the tabulated histogram maps of the tiling colour output stay within
-// their stated tolerance of the Gauss–Hermite rule they tabulate (and no further from the true
-// expectation than that rule).
+// any thread count; the packed single-precision tiling path stays within its stated tolerance
+// (in σ) of the double estimator and reference colour-map lookup; and the tabulated histogram
+// maps of the tiling colour output stay within their stated tolerance of the Gauss–Hermite
+// rule they tabulate (and no further from the true expectation than that rule).
 #include "test_support.h"
 
 #include "colour/tabulated_colour_mapping.h"
@@ -133,6 +134,66 @@ TEST(RasterPaths, RendersAreBitIdenticalForAnyThreadCount)
         const Image solid = render(*texture, settings);
         settings.threads = 1;
         EXPECT_EQ(solid.pixels, render(*texture, settings).pixels) << c.name << " solid";
+    }
+}
+
+/// Each RGB channel's σ over a set of colours.
+std::array<double, 3> sigma_of(const std::vector<Rgb>& colours)
+{
+    std::array<double, 3> sigma{};
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0, sum2 = 0;
+        for (const Rgb& v : colours) sum += v[c], sum2 += double(v[c]) * v[c];
+        const double mean = sum / colours.size();
+        sigma[c] = std::sqrt(std::max(1e-30, sum2 / colours.size() - mean * mean));
+    }
+    return sigma;
+}
+
+TEST(RasterPaths, PackedEstimatorMatchesTheDoublePath)
+{
+    // The packed single-precision estimator (TilingRaster: what eval() and the batch methods
+    // run) and the colour map's packed lookup (ColourMapFilter::lookup) against the double
+    // estimator (TilingTexture::moments) and the reference lookup (ColourMapFilter::filtered)
+    // they replace, for colour, colour map and phasor, at footprints from a point to the
+    // coarsest level, anisotropic included. Errors in σ of each RGB channel of the texture's
+    // point-sampled values (docs/models/tiling.md, "Precision", has the measured figures).
+    for (const Case& c : cases()) {
+        if (c.name.rfind("tiling", 0) != 0) continue;
+        const TilingTexture texture(c.description);
+        const double ppu = c.description.pixels_per_unit;
+        const ColourMapFilter* map = texture.colour_map_filter();
+        auto reference_colour = [&](const Moments& m) {
+            if (!map) return texture.colour(m);  // colour: the same (tabulated) histogram maps
+            return map->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, texture.options().colour_map);
+        };
+        std::array<double, 3> unit{};
+        double worst = 0, worst_rms = 0;
+        for (const Footprint2D& f : footprints_px()) {
+            std::vector<Rgb> packed, reference;
+            const Footprint2D footprint = f.scaled(1 / ppu);
+            for (int j = 0; j < 48; ++j)
+                for (int i = 0; i < 48; ++i) {
+                    const Vec2 uv{(i * 3.7 + 0.3) / ppu, (j * 2.9 + 0.6) / ppu};
+                    packed.push_back(texture.eval(uv, footprint));
+                    reference.push_back(reference_colour(texture.moments(uv, footprint)));
+                }
+            if (f.dudx == 0) unit = sigma_of(reference);  // the first footprint: a point
+            std::array<double, 3> max{}, rms{};
+            for (int k = 0; k < 3; ++k) {
+                double square = 0;
+                for (std::size_t n = 0; n < packed.size(); ++n) {
+                    const double d = std::abs(double(packed[n][k]) - reference[n][k]) / unit[std::size_t(k)];
+                    max[std::size_t(k)] = std::max(max[std::size_t(k)], d), square += d * d;
+                }
+                rms[std::size_t(k)] = std::sqrt(square / packed.size());
+                worst = std::max(worst, max[std::size_t(k)]), worst_rms = std::max(worst_rms, rms[std::size_t(k)]);
+            }
+            std::printf("%-18s footprint %6g px: max %.2e %.2e %.2e sigma, RMS %.2e %.2e %.2e sigma\n", c.name.c_str(), f.dudx,
+                        max[0], max[1], max[2], rms[0], rms[1], rms[2]);
+        }
+        EXPECT_LT(worst, 1e-3) << c.name;
+        EXPECT_LT(worst_rms, 5e-5) << c.name;
     }
 }
 

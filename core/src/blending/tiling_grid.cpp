@@ -16,7 +16,7 @@ const double sqrt3 = std::sqrt(3.0);
 std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 }  // namespace
 
-TilingGrid::TilingGrid(std::uint32_t seed, double edge) : seed_(seed), edge_{edge, edge}
+TilingGrid::TilingGrid(std::uint32_t seed, double edge) : seed_(seed), edge_{edge, edge}, inverse_edge_{1 / edge, 1 / edge}
 {
     if (!(edge > 0) || !std::isfinite(edge)) throw Error("tiling grid: the triangle edge must be positive");
 }
@@ -29,6 +29,7 @@ TilingGrid::TilingGrid(std::uint32_t seed, double edge, const std::array<double,
     cells_x_ = std::max<std::int64_t>(1, std::llround(period[0] / edge));
     repeats_y_ = std::max<std::int64_t>(1, std::llround(period[1] / (sqrt3 * edge)));
     edge_ = {period[0] / double(cells_x_), period[1] / (sqrt3 * double(repeats_y_))};
+    inverse_edge_ = {1 / edge_[0], 1 / edge_[1]};
 }
 
 void TilingGrid::draw(std::int64_t i, std::int64_t j, TileVertex& vertex) const
@@ -86,6 +87,15 @@ TileBlend TilingGrid::blend_with(double x, double y, const Draw& draw) const
         draw(vi, vj, result[k]);
     }
     return result;
+}
+
+TileVertex TilingGrid::vertex(std::int64_t i, std::int64_t j) const
+{
+    TileVertex v;
+    v.weight = 0;
+    v.centre = {edge_[0] * (double(i) + 0.5 * double(j)), edge_[1] * (0.5 * sqrt3 * double(j))};
+    draw(i, j, v);
+    return v;
 }
 
 TileBlend TilingGrid::blend(double x, double y) const

@@ -66,8 +66,14 @@ public:
     TileBlend blend(double x, double y) const;
     /// The same blend, the vertices' offsets looked up in (and added to) `cache`.
     TileBlend blend(double x, double y, TileCache& cache) const;
+
+    /// Vertex (i, j) as blend() gives it (centre, offset, period shift; weight 0).
+    TileVertex vertex(std::int64_t i, std::int64_t j) const;
     /// The edges actually used along x and y (differ from `edge` only in the periodic form).
     const std::array<double, 2>& edges() const { return edge_; }
+    /// 1 / edges(): the tiling raster's triangle geometry multiplies by them
+    /// (models/tiling/tiling_raster_kernels.h).
+    const std::array<double, 2>& inverse_edges() const { return inverse_edge_; }
     /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
     std::uint32_t seed() const { return seed_; }
 
@@ -79,6 +85,7 @@ private:
 
     std::uint32_t seed_;
     std::array<double, 2> edge_;
+    std::array<double, 2> inverse_edge_;  // 1 / edge_
     std::int64_t cells_x_ = 0, repeats_y_ = 0;  // periodic lattice (n, m); 0: not periodic
 };
 

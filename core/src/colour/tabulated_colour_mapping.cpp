@@ -43,7 +43,10 @@ void TabulatedColourMapping::build() const
 double TabulatedColourMapping::map_channel(int c, double z, double dropped_sigma) const
 {
     if (!exact_.has_map(c) || dropped_sigma < 1e-4 || !(dropped_sigma < sigma_max)) return exact_.map_channel(c, z, dropped_sigma);
-    std::call_once(built_, [this] { build(); });
+    if (!ready_.load(std::memory_order_acquire)) {
+        std::call_once(built_, [this] { build(); });
+        ready_.store(true, std::memory_order_release);
+    }
     const Table& table = tables_[c];
     const double s = dropped_sigma * (1 / step);
     const int row = std::min(int(s), table.rows - 2);

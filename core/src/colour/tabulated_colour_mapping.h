@@ -17,6 +17,7 @@
 #include "colour/colour_mapping.h"
 
 #include <array>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -47,6 +48,7 @@ private:
     ColourMapping exact_;
     std::array<double, 2> knot_range_[3];
     mutable std::once_flag built_;
+    mutable std::atomic<bool> ready_{false};  // built_ done: skips call_once's library call per lookup
     mutable std::array<Table, 3> tables_;  // empty for a Gaussian channel
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace stochtex {
 
@@ -123,7 +124,8 @@ ColourMapFilter::ColourMapFilter(const std::vector<float>& rgb, int size) : size
         for (int j = 0; j < levels_; ++j) {
             Blurred& blurred = table_[std::size_t(i) * levels_ + j];
             blurred.width = wa, blurred.height = resolution_of(j);
-            blurred.rgb.resize(std::size_t(wa) * blurred.height * 3);
+            // One float more: lookup() reads each texel as four floats (the last one's 4th is this).
+            blurred.rgb.resize(std::size_t(wa) * blurred.height * 3 + 1);
             for (int x = 0; x < wa; ++x)
                 for (int c = 0; c < 3; ++c)
                     blurs[j].apply(&along_a[std::size_t(x) * 3 + c], std::size_t(wa) * 3, &blurred.rgb[std::size_t(x) * 3 + c],
@@ -186,42 +188,139 @@ Rgb ColourMapFilter::Fractional::fetch(double a, double b) const
     return out;
 }
 
-Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
+ColourMapFilter::Line ColourMapFilter::line(double mean_a, double mean_b, const PairCovariance& covariance,
+                                            ColourMapMethod method) const
 {
-    const double a = std::clamp(mean_a, 0.0, 1.0), b = std::clamp(mean_b, 0.0, 1.0);
+    Line line;
+    line.a = std::clamp(mean_a, 0.0, 1.0), line.b = std::clamp(mean_b, 0.0, 1.0);
     // Texel units: the map spans [0, 1] with size_ texels per axis.
     const double n2 = double(size_) * size_;
     const double var_a = std::max(0.0, covariance.aa) * n2, var_b = std::max(0.0, covariance.bb) * n2;
-    if (method == ColourMapMethod::reference) {
-        auto level = [&](double variance) {
-            return std::min(levels_ - 1, int(std::lround(std::log2(1 + std::sqrt(variance)))));
-        };
-        return fetch(level(var_a), level(var_b), a, b);
-    }
     double cov = covariance.ab * n2;
     const double bound = std::sqrt(var_a * var_b);
-    if (method == ColourMapMethod::interpolated || !(std::abs(cov) > 1e-3 * bound))
-        return fetch_fractional(fractional_level(std::sqrt(var_a)), fractional_level(std::sqrt(var_b)), a, b);
+    if (method == ColourMapMethod::interpolated || !(std::abs(cov) > 1e-3 * bound)) {
+        line.level_a = fractional_level(std::sqrt(var_a)), line.level_b = fractional_level(std::sqrt(var_b));
+        return line;
+    }
     // Σ = diag(d) + u uᵀ: u = (α, ±β) with αβ = |cov| and α/β = sqrt(var_a / var_b) leaves
     // d = (var_a − α², var_b − β²) ≥ 0 (zero for a perfect correlation).
     cov = std::clamp(cov, -bound, bound);
-    const double alpha = std::sqrt(std::abs(cov) * std::sqrt(var_a / var_b));
-    const double beta = std::sqrt(std::abs(cov) * std::sqrt(var_b / var_a)) * (cov < 0 ? -1 : 1);
-    const double d_a = std::max(0.0, var_a - alpha * alpha), d_b = std::max(0.0, var_b - beta * beta);
-    const double la = fractional_level(std::sqrt(d_a)), lb = fractional_level(std::sqrt(d_b));
+    line.alpha = std::sqrt(std::abs(cov) * std::sqrt(var_a / var_b));
+    line.beta = std::sqrt(std::abs(cov) * std::sqrt(var_b / var_a)) * (cov < 0 ? -1 : 1);
+    const double d_a = std::max(0.0, var_a - line.alpha * line.alpha), d_b = std::max(0.0, var_b - line.beta * line.beta);
+    line.level_a = fractional_level(std::sqrt(d_a)), line.level_b = fractional_level(std::sqrt(d_b));
     // Nodes along u no farther apart than about a texel or the blur already there.
-    const double length = std::hypot(alpha, beta);
+    const double length = std::hypot(line.alpha, line.beta);
     const double spacing = std::max(1.0, std::sqrt(std::min(d_a, d_b)));
-    const int count = std::clamp(int(std::ceil(8 * length / spacing)) | 1, 3, 63);
-    const LineQuadrature& rule = line_quadrature(count);
-    const Fractional levels(*this, la, lb);
+    line.count = std::clamp(int(std::ceil(8 * length / spacing)) | 1, 3, 63);
+    return line;
+}
+
+Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
+{
+    if (method == ColourMapMethod::reference) {
+        const double a = std::clamp(mean_a, 0.0, 1.0), b = std::clamp(mean_b, 0.0, 1.0);
+        const double n2 = double(size_) * size_;
+        auto level = [&](double variance) {
+            return std::min(levels_ - 1, int(std::lround(std::log2(1 + std::sqrt(std::max(0.0, variance) * n2)))));
+        };
+        return fetch(level(covariance.aa), level(covariance.bb), a, b);
+    }
+    const Line l = line(mean_a, mean_b, covariance, method);
+    if (l.alpha == 0 && l.beta == 0) return fetch_fractional(l.level_a, l.level_b, l.a, l.b);
+    const LineQuadrature& rule = line_quadrature(l.count);
+    const Fractional levels(*this, l.level_a, l.level_b);
     double sum[3] = {0, 0, 0};
-    for (int k = 0; k < count; ++k) {
+    for (int k = 0; k < l.count; ++k) {
         const double t = rule.node[k];
-        const Rgb c = levels.fetch(std::clamp(a + t * alpha / size_, 0.0, 1.0), std::clamp(b + t * beta / size_, 0.0, 1.0));
+        const Rgb c = levels.fetch(std::clamp(l.a + t * l.alpha / size_, 0.0, 1.0), std::clamp(l.b + t * l.beta / size_, 0.0, 1.0));
         for (int ch = 0; ch < 3; ++ch) sum[ch] += rule.weight[k] * c[ch];
     }
     return {float(sum[0]), float(sum[1]), float(sum[2])};
+}
+
+namespace {
+/// An RGB texel and its neighbour's R as one vector (lane 3 unused): one load, lane-wise maths.
+typedef float Colour4 __attribute__((vector_size(4 * sizeof(float))));
+
+inline Colour4 load_rgb(const float* p)
+{
+    Colour4 c;
+    std::memcpy(&c, p, sizeof c);
+    return c;
+}
+
+inline Colour4 splat4(float v) { return Colour4{v, v, v, v}; }
+}  // namespace
+
+class ColourMapFilter::Packed {
+public:
+    Packed(const ColourMapFilter& filter, double level_a, double level_b)
+    {
+        // Fractional's four (floor, ceil) level pairs, the zero-weight ones dropped.
+        const int ia = std::min(int(level_a), filter.levels_ - 1), ib = std::min(int(level_b), filter.levels_ - 1);
+        const double ta = level_a - ia, tb = level_b - ib;
+        const int ja = std::min(ia + 1, filter.levels_ - 1), jb = std::min(ib + 1, filter.levels_ - 1);
+        add(filter, ia, ib, (1 - ta) * (1 - tb));
+        if (ta != 0) add(filter, ja, ib, ta * (1 - tb));
+        if (tb != 0) add(filter, ia, jb, (1 - ta) * tb);
+        if (ta != 0 && tb != 0) add(filter, ja, jb, ta * tb);
+    }
+
+    Colour4 fetch(double a, double b) const
+    {
+        Colour4 out{};
+        for (int k = 0; k < count_; ++k) {
+            const Table& m = tables_[std::size_t(k)];
+            // ColourMapFilter::fetch's clamped texel coordinates.
+            const double x = std::clamp(a * m.width - 0.5, 0.0, double(m.width - 1));
+            const double y = std::clamp(b * m.height - 0.5, 0.0, double(m.height - 1));
+            const int x0 = std::min(int(x), m.last_x0), y0 = std::min(int(y), m.last_y0);
+            const int x1 = std::min(x0 + 1, m.width - 1), y1 = std::min(y0 + 1, m.height - 1);
+            const float fx = float(x - x0), fy = float(y - y0);
+            const float* r0 = m.rgb + std::size_t(y0) * m.stride, * r1 = m.rgb + std::size_t(y1) * m.stride;
+            const Colour4 gx = splat4(fx), hx = splat4(1 - fx);
+            const Colour4 low = hx * load_rgb(r0 + 3 * x0) + gx * load_rgb(r0 + 3 * x1);
+            const Colour4 high = hx * load_rgb(r1 + 3 * x0) + gx * load_rgb(r1 + 3 * x1);
+            out += m.weight * (splat4(1 - fy) * low + splat4(fy) * high);
+        }
+        return out;
+    }
+
+private:
+    struct Table {
+        const float* rgb;
+        std::size_t stride;  // floats per row
+        int width, height, last_x0, last_y0;
+        Colour4 weight;
+    };
+    void add(const ColourMapFilter& filter, int level_a, int level_b, double weight)
+    {
+        const Blurred& m = filter.table_[std::size_t(level_a) * filter.levels_ + level_b];
+        tables_[std::size_t(count_++)] = {m.rgb.data(), std::size_t(m.width) * 3, m.width, m.height, std::max(0, m.width - 2),
+                                          std::max(0, m.height - 2), splat4(float(weight))};
+    }
+    std::array<Table, 4> tables_{};
+    int count_ = 0;
+};
+
+Rgb ColourMapFilter::lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
+{
+    if (method == ColourMapMethod::reference) return filtered(mean_a, mean_b, covariance, method);
+    const Line l = line(mean_a, mean_b, covariance, method);
+    const Packed levels(*this, l.level_a, l.level_b);
+    if (l.alpha == 0 && l.beta == 0) {
+        const Colour4 c = levels.fetch(l.a, l.b);
+        return {c[0], c[1], c[2]};
+    }
+    const LineQuadrature& rule = line_quadrature(l.count);
+    Colour4 sum{};
+    const double step_a = l.alpha / size_, step_b = l.beta / size_;
+    for (int k = 0; k < l.count; ++k) {
+        const double t = rule.node[k];
+        sum += splat4(float(rule.weight[k])) * levels.fetch(std::clamp(l.a + t * step_a, 0.0, 1.0), std::clamp(l.b + t * step_b, 0.0, 1.0));
+    }
+    return {sum[0], sum[1], sum[2]};
 }
 
 Rgb ColourMapFilter::expected(double mean_a, double mean_b, const PairCovariance& covariance) const

@@ -42,7 +42,13 @@ public:
     int size() const { return size_; }
     /// S at (a, b): bilinear, clamped to the map.
     Rgb point(double a, double b) const { return fetch(0, 0, a, b); }
+    /// The reference implementation (double-precision fetches, one per blur-level pair).
     Rgb filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
+    /// filtered() as the texture evaluates it: the same nodes, levels and weights, each node's
+    /// (up to four) blurred tables read as RGB vectors of four floats and blended in single
+    /// precision with the level weights folded into the bilinear weights. Within ~1e-6 of
+    /// filtered() (tests/raster_paths_test.cpp measures the colour-map output against it).
+    Rgb lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
     /// E[S(N)] by brute-force quadrature over the unblurred map (a test oracle; slow).
     Rgb expected(double mean_a, double mean_b, const PairCovariance& covariance) const;
 
@@ -66,6 +72,18 @@ private:
         double ta_, tb_;
     };
     double fractional_level(double sigma) const;
+    /// The covariance method's rank-one line: Σ = diag(d) + u uᵀ, the table levels of diag(d),
+    /// u in texels and the node count (filtered() and lookup() share it).
+    struct Line {
+        double a, b;            ///< the clamped mean
+        double level_a, level_b;  ///< fractional levels of the axis-aligned part
+        double alpha = 0, beta = 0;  ///< u (texels); 0 when no covariance is resolved
+        int count = 1;
+    };
+    /// Line of the interpolated / covariance methods (method ≠ reference).
+    Line line(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
+    /// The up-to-four tables of a fractional level pair with their weights, resolved once.
+    class Packed;
 
     int size_;
     int levels_;  // blur levels per axis, the last one the average

@@ -63,6 +63,8 @@ TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* 
         else
             planes_.emplace_back(pyramid, TilingGrid(seed, edge));
     }
+    packed_ = std::make_shared<const PackedMomentPyramid>(*pyramid);
+    for (const TilingNoise& plane : planes_) rasters_.emplace_back(plane, *packed_);
     // The exemplar stores each channel in its map's input units (fit_tiling_exemplar): unit σ_M.
     if (output_ == TilingOutput::colour)
         colour_mapping_ = std::make_shared<const TabulatedColourMapping>(description, std::array<double, 3>{1, 1, 1});
@@ -76,6 +78,44 @@ Moments TilingTexture::moments(const Vec2& uv, const Footprint2D& f) const
                                          options_.sampling);
 }
 
+TilingTexture::PlaneCache& TilingTexture::single_cache(int k)
+{
+    // One per thread and plane, its buffers kept between point evaluations (no allocation per
+    // eval()); the translations are forgotten each time, since another texture may have used it.
+    thread_local std::array<PlaneCache, 3> caches{PlaneCache(true), PlaneCache(true), PlaneCache(true)};
+    PlaneCache& cache = caches[std::size_t(k)];
+    cache.workspace.invalidate();
+    cache.tiles = TileCache();
+    return cache;
+}
+
+Moments TilingTexture::plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const
+{
+    Moments m;
+    plane_row(k, &x, 1, y, plan, cache, &m);
+    return m;
+}
+
+void TilingTexture::plane_row(int k, const double* x, std::size_t count, double y, const TilingRaster::Plan& plan, PlaneCache& cache,
+                              Moments* out) const
+{
+    const TilingRaster& raster = rasters_[std::size_t(k)];
+    if (!TilingRaster::serves(plan)) {
+        for (std::size_t i = 0; i < count; ++i) out[i] = planes_[std::size_t(k)].footprint_estimate(x[i], y, plan.taps, cache.tiles);
+        return;
+    }
+    cache.packed.resize(count * PackedMomentPyramid::record);
+    raster.estimate_row(x, count, y, plan, cache.workspace, cache.packed.data());
+    for (std::size_t i = 0; i < count; ++i) out[i] = raster.unpack(cache.packed.data() + i * PackedMomentPyramid::record);
+}
+
+Moments TilingTexture::raster_moments(const Vec2& uv, const Footprint2D& f) const
+{
+    const double ppu = description().pixels_per_unit;
+    PlaneCache& cache = single_cache(0);
+    return plane_moments(0, uv[0] * ppu, uv[1] * ppu, rasters_[0].plan(f.scaled(ppu), options_.sampling), cache);
+}
+
 Rgb TilingTexture::colour(const Moments& m) const
 {
     switch (output_) {
@@ -85,7 +125,7 @@ Rgb TilingTexture::colour(const Moments& m) const
         return colour_mapping_->to_rgb({m.mean[0], m.mean[1], m.mean[2]}, spread);
     }
     case TilingOutput::colour_map:
-        return colour_map_->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)},
+        return colour_map_->lookup(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)},
                                      options_.colour_map);
     case TilingOutput::normal_map: {
         const Direction n = normal_from_slopes(m.mean[0], m.mean[1]);
@@ -95,19 +135,29 @@ Rgb TilingTexture::colour(const Moments& m) const
     throw Error("tiling texture: unknown output");
 }
 
-Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(moments(uv, footprint)); }
+Rgb TilingTexture::mean() const
+{
+    const Moments m = planes_[0].global();
+    if (output_ == TilingOutput::colour_map)
+        return colour_map_->filtered(m.mean[0], m.mean[1], {m.moment(0, 0), m.moment(0, 1), m.moment(1, 1)}, options_.colour_map);
+    return colour(m);
+}
+
+Rgb TilingTexture::eval(const Vec2& uv, const Footprint2D& footprint) const { return colour(raster_moments(uv, footprint)); }
 
 void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out) const
 {
-    // moments() at every pixel with the footprint's taps planned once and the grid's vertices
-    // shared along the rows.
+    // raster_moments() at every pixel with the footprint's taps planned once and the grid's
+    // vertices shared along the rows.
     const double ppu = description().pixels_per_unit;
-    const TapPlan plan = planes_[0].plan(region.footprint.scaled(ppu), options_.sampling);
-    TileCache cache;
+    const TilingRaster::Plan plan = rasters_[0].plan(region.footprint.scaled(ppu), options_.sampling);
+    PlaneCache cache;
+    std::vector<double> x(std::size_t(region.width));
+    for (int i = 0; i < region.width; ++i) x[std::size_t(i)] = region.u(i) * ppu;
+    std::vector<Moments> row(std::size_t(region.width));
     for (int j = 0; j < region.height; ++j) {
-        const double y = region.v(j) * ppu;
-        for (int i = 0; i < region.width; ++i)
-            out.set(std::size_t(j) * region.width + i, colour(planes_[0].footprint_estimate(region.u(i) * ppu, y, plan, cache)));
+        plane_row(0, x.data(), x.size(), region.v(j) * ppu, plan, cache, row.data());
+        for (int i = 0; i < region.width; ++i) out.set(std::size_t(j) * region.width + i, colour(row[std::size_t(i)]));
     }
 }
 
@@ -130,14 +180,13 @@ TilingTexture::SolidPlan TilingTexture::solid_plan(const SurfacePoint& point) co
         const int s = k, t = (k + 1) % 3;
         // The footprint projected on the plane (s, t), in exemplar pixels.
         const Footprint2D footprint = Footprint2D{point.dpdx[s], point.dpdx[t], point.dpdy[s], point.dpdy[t]}.scaled(ppu);
-        plan.taps[k] = planes_[k].plan(footprint, options_.sampling);
+        plan.taps[k] = rasters_[k].plan(footprint, options_.sampling);
     }
     return plan;
 }
 
-Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const
+Moments TilingTexture::solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const
 {
-    const double ppu = description().pixels_per_unit;
     const Moments& global = planes_[0].global();
     Moments result;
     result.channels = global.channels;
@@ -145,8 +194,7 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
     for (int k = 0; k < 3; ++k) {
         const double w = plan.weight[k];
         if (w == 0) continue;
-        const int s = k, t = (k + 1) % 3;
-        const Moments m = planes_[k].footprint_estimate(point.p[s] * ppu, point.p[t] * ppu, plan.taps[k], caches[k]);
+        const Moments& m = planes[std::size_t(k)];
         for (int a = 0; a < result.channels; ++a) {
             result.mean[a] += w * (m.mean[a] - global.mean[a]);
             for (int b = 0; b < result.channels; ++b) result.moment(a, b) += w * w * m.moment(a, b);
@@ -157,8 +205,15 @@ Moments TilingTexture::solid_moments(const SurfacePoint& point, const SolidPlan&
 
 Rgb TilingTexture::eval_solid(const SurfacePoint& point) const
 {
-    std::array<TileCache, 3> caches;
-    return colour(solid_moments(point, solid_plan(point), caches));
+    const double ppu = description().pixels_per_unit;
+    const SolidPlan plan = solid_plan(point);
+    std::array<Moments, 3> planes;
+    for (int k = 0; k < 3; ++k) {
+        if (plan.weight[std::size_t(k)] == 0) continue;
+        planes[std::size_t(k)] = plane_moments(k, point.p[std::size_t(k)] * ppu, point.p[std::size_t((k + 1) % 3)] * ppu,
+                                               plan.taps[std::size_t(k)], single_cache(k));
+    }
+    return colour(solid_moments(plan, planes));
 }
 
 void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& out) const
@@ -169,12 +224,34 @@ void TilingTexture::eval_solid_region(const SolidRegion& region, const RgbOutput
     point.dpdx = {plane.footprint.dudx, plane.footprint.dvdx, 0};
     point.dpdy = {plane.footprint.dudy, plane.footprint.dvdy, 0};
     const SolidPlan plan = solid_plan(point);
-    std::array<TileCache, 3> caches;
-    for (int j = 0; j < plane.height; ++j)
-        for (int i = 0; i < plane.width; ++i) {
-            point.p = {plane.u(i), plane.v(j), region.w};
-            out.set(std::size_t(j) * plane.width + i, colour(solid_moments(point, plan, caches)));
+    const double ppu = description().pixels_per_unit;
+    std::array<PlaneCache, 3> caches;
+    std::array<std::vector<Moments>, 3> rows;
+    std::vector<double> u(std::size_t(plane.width));
+    for (int i = 0; i < plane.width; ++i) u[std::size_t(i)] = plane.u(i) * ppu;
+    for (int j = 0; j < plane.height; ++j) {
+        // Plane k reads (p_k, p_(k+1)): planes 0 (u, v) and 1 (v, w) are rows of constant
+        // second coordinate; plane 2 (w, u) is not, and goes point by point.
+        const double v = plane.v(j) * ppu, w = region.w * ppu;
+        for (int k = 0; k < 3; ++k) {
+            if (plan.weight[std::size_t(k)] == 0) continue;
+            std::vector<Moments>& row = rows[std::size_t(k)];
+            row.resize(u.size());
+            if (k == 0) plane_row(0, u.data(), u.size(), v, plan.taps[0], caches[0], row.data());
+            if (k == 1) {
+                caches[1].x.assign(u.size(), v);
+                plane_row(1, caches[1].x.data(), u.size(), w, plan.taps[1], caches[1], row.data());
+            }
+            if (k == 2)
+                for (std::size_t i = 0; i < u.size(); ++i) plane_row(2, &w, 1, u[i], plan.taps[2], caches[2], &row[i]);
         }
+        std::array<Moments, 3> planes;
+        for (int i = 0; i < plane.width; ++i) {
+            for (int k = 0; k < 3; ++k)
+                if (plan.weight[std::size_t(k)] != 0) planes[std::size_t(k)] = rows[std::size_t(k)][std::size_t(i)];
+            out.set(std::size_t(j) * plane.width + i, colour(solid_moments(plan, planes)));
+        }
+    }
 }
 
 }  // namespace stochtex

@@ -19,9 +19,11 @@
 // Colour's histogram maps are tabulated over (mean, spread) (tabulated_colour_mapping.h), for
 // eval() and the batch methods alike.
 //
-// Batch evaluation: eval_region / eval_solid_region plan the footprint's taps once (their
-// count, offsets and pyramid level) and share the triangle grid's vertex draws along the rows
-// (TileCache); per pixel the arithmetic is eval()'s, so values are bit-identical to it.
+// Evaluation: every method runs the packed single-precision estimator (tiling_raster.h) —
+// eval_region and eval_solid_region a row of positions at a time with the footprint's taps
+// planned once, eval() and eval_solid() one position — so values are bit-identical between
+// them; moments() is the double estimator (TilingNoise), their reference. Footprints it does
+// not serve (the mixture interpolation, more than 64 taps) take the double path everywhere.
 //
 // Solid: no solid exemplar exists, so eval_solid() blends three axis-aligned planar tilings
 // (independent grids) with weights ∝ n_k⁴ normalised so that Σ ω_k² = 1: variance-preserving
@@ -34,6 +36,7 @@
 #include "models/tiling/colour_map_filter.h"
 #include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_noise.h"
+#include "models/tiling/tiling_raster.h"
 
 #include <stochtex/texture.h>
 #include <stochtex/models/tiling_parameters.h>
@@ -56,15 +59,24 @@ public:
     explicit TilingTexture(const TextureDescription& description, const TilingFilterOptions& options = {});
     /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
     TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options = {});
+    TilingTexture(const TilingTexture&) = delete;  // rasters_ refer to planes_ and packed_
+    TilingTexture& operator=(const TilingTexture&) = delete;
 
     Rgb eval(const Vec2& uv, const Footprint2D& footprint) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
-    Rgb mean() const override { return colour(planes_[0].global()); }
+    /// colour() of the exemplar's exact moments; a colour map through the reference lookup
+    /// (ColourMapFilter::filtered), so the mean written in a .stex does not depend on the packed
+    /// lookup's rounding.
+    Rgb mean() const override;
 
-    /// The blended channels' filtered moments at uv over the footprint (2D).
+    /// The blended channels' filtered moments at uv over the footprint (2D), all of them, in
+    /// double precision (TilingNoise::footprint_estimate: the reference of the packed path).
     Moments moments(const Vec2& uv, const Footprint2D& footprint) const;
+    /// The moments eval() and the batch methods use (TilingRaster, single precision, only the
+    /// second moments colour() reads; the double path where TilingRaster does not serve the plan).
+    Moments raster_moments(const Vec2& uv, const Footprint2D& footprint) const;
     /// The output colour of channels with these moments.
     Rgb colour(const Moments& moments) const;
     const TilingNoise& noise() const { return planes_[0]; }
@@ -77,15 +89,35 @@ private:
     /// The solid blend's weights and per-plane taps for one normal and footprint.
     struct SolidPlan {
         std::array<double, 3> weight{};  ///< ω_k / ‖ω‖ (0: plane unused)
-        std::array<TapPlan, 3> taps;
+        std::array<TilingRaster::Plan, 3> taps;
     };
+    /// One thread's caches of one plane's grid (the packed path's and the double path's).
+    struct PlaneCache {
+        TilingRaster::Workspace workspace;
+        TileCache tiles;
+        std::vector<double> x;
+        std::vector<float> packed;
+        PlaneCache() = default;
+        /// A cache for one evaluation (its taps share a few vertices).
+        explicit PlaneCache(bool single) : workspace(single ? 2 : 6, single ? 2 : 4) {}
+    };
+    /// A point evaluation's cache of plane k (this thread's, emptied).
+    static PlaneCache& single_cache(int k);
     SolidPlan solid_plan(const SurfacePoint& point) const;
-    Moments solid_moments(const SurfacePoint& point, const SolidPlan& plan, std::array<TileCache, 3>& caches) const;
+    /// The solid blend of the planes' moments (planes of weight 0 are not read).
+    Moments solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const;
+    /// Plane k's moments at (x, y) exemplar pixels with a planned footprint.
+    Moments plane_moments(int k, double x, double y, const TilingRaster::Plan& plan, PlaneCache& cache) const;
+    /// plane_moments() at (x[i], y), i < count (x monotone), into out[i].
+    void plane_row(int k, const double* x, std::size_t count, double y, const TilingRaster::Plan& plan, PlaneCache& cache,
+                   Moments* out) const;
 
     TilingFilterOptions options_;
     TilingOutput output_;
     /// planes_[0] is the 2D texture; planes_[1], [2] the extra planes of the solid blend.
     std::vector<TilingNoise> planes_;
+    std::shared_ptr<const PackedMomentPyramid> packed_;
+    std::vector<TilingRaster> rasters_;  ///< one per plane
     std::shared_ptr<const TabulatedColourMapping> colour_mapping_;
     std::optional<ColourMapFilter> colour_map_;
 };

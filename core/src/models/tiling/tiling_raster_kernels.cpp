@@ -1,0 +1,139 @@
+// Highway compiles this file once per instruction set (foreach_target.h); plan_tap_row picks the
+// best one the CPU has. Only Mul, Add, Sub, Div, Sqrt and Floor (never MulAdd), lane-wise: the
+// same rounding on every target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "models/tiling/tiling_raster_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include "models/tiling/tiling_raster_kernels.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace stochtex::tiling_raster::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void PlanTapRow(const TapRow& row, const TileReads& out)
+{
+    const hn::ScalableTag<double> dd;
+    const hn::RebindToSigned<decltype(dd)> di;
+    const hn::Rebind<float, decltype(dd)> df;
+    const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const std::size_t lanes = hn::Lanes(dd);
+    const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5), zero = hn::Zero(dd);
+    const auto fy = hn::Set(dd, row.fy), y = hn::Set(dd, row.y), i_min = hn::Set(dd, row.i_min);
+    const auto shift = hn::Mul(half, hn::Set(dd, row.sy)), inverse_edge = hn::Set(dd, row.inverse_edge_x);
+    const auto eight = hn::Set(dd, 8.0);
+    // One level's lookup of tile k at p, q: the two record offsets and the fractions.
+    auto lookup = [&](const LevelGeometry& g, hn::Vec<decltype(dd)> p, hn::Vec<decltype(dd)> q, std::int32_t* o0, std::int32_t* o1,
+                      float* fx, float* fyo, std::size_t i) {
+        const auto lx = hn::Sub(hn::Mul(p, hn::Set(dd, g.scale_x)), half), ly = hn::Sub(hn::Mul(q, hn::Set(dd, g.scale_y)), half);
+        const auto x0 = hn::Floor(lx), y0 = hn::Floor(ly);
+        hn::StoreU(hn::DemoteTo(df, hn::Sub(lx, x0)), df, fx + i);
+        hn::StoreU(hn::DemoteTo(df, hn::Sub(ly, y0)), df, fyo + i);
+        const auto width = hn::Set(dd, g.width), height = hn::Set(dd, g.height);
+        const auto ix = hn::Sub(x0, hn::Mul(width, hn::Floor(hn::Mul(x0, hn::Set(dd, g.inverse_width)))));
+        const auto iy = hn::Sub(y0, hn::Mul(height, hn::Floor(hn::Mul(y0, hn::Set(dd, g.inverse_height)))));
+        const auto next = hn::Add(iy, one);
+        const auto jy = hn::IfThenElse(hn::Ge(next, height), zero, next);
+        const auto records = hn::Set(dd, g.row);
+        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(iy, records), ix), eight)), d32, o0 + i);
+        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(jy, records), ix), eight)), d32, o1 + i);
+    };
+    for (std::size_t i = 0; i < row.n; i += lanes) {
+        const auto x = hn::LoadU(dd, row.x + i);
+        const auto sx = hn::Sub(hn::Mul(x, inverse_edge), shift);
+        const auto cx = hn::Floor(sx);
+        const auto fx = hn::Sub(sx, cx);
+        const auto upper = hn::Ge(hn::Add(fx, fy), one);  // not (fx + fy < 1)
+        const auto b0 = hn::IfThenElse(upper, hn::Sub(hn::Add(fx, fy), one), hn::Sub(hn::Sub(one, fx), fy));
+        const auto b1 = hn::IfThenElse(upper, hn::Sub(one, fy), fx);
+        const auto b2 = hn::IfThenElse(upper, hn::Sub(one, fx), fy);
+        const auto inverse_norm =
+            hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(b0, b0), hn::Mul(b1, b1)), hn::Mul(b2, b2))));
+        const hn::Vec<decltype(dd)> weights[3] = {hn::Mul(b0, inverse_norm), hn::Mul(b1, inverse_norm), hn::Mul(b2, inverse_norm)};
+        // Translation columns c = cx − i_min and c + 1 in both vertex rows.
+        const auto c = hn::ConvertTo(di, hn::Sub(cx, i_min));
+        const auto c1 = hn::Add(c, hn::Set(di, 1));
+        const auto t0x = hn::IfThenElse(upper, hn::GatherIndex(dd, row.row1_x, c1), hn::GatherIndex(dd, row.row0_x, c));
+        const auto t0y = hn::IfThenElse(upper, hn::GatherIndex(dd, row.row1_y, c1), hn::GatherIndex(dd, row.row0_y, c));
+        const hn::Vec<decltype(dd)> tx[3] = {t0x, hn::GatherIndex(dd, row.row0_x, c1), hn::GatherIndex(dd, row.row1_x, c)};
+        const hn::Vec<decltype(dd)> ty[3] = {t0y, hn::GatherIndex(dd, row.row0_y, c1), hn::GatherIndex(dd, row.row1_y, c)};
+        for (int k = 0; k < 3; ++k) {
+            hn::StoreU(hn::DemoteTo(df, weights[k]), df, out.weight[k] + i);
+            const auto p = hn::Add(x, tx[k]), q = hn::Add(y, ty[k]);
+            lookup(row.lower, p, q, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], i);
+            if (row.has_upper) lookup(row.upper, p, q, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], i);
+        }
+    }
+}
+
+void AccumulateTaps(const TapSums& s, std::size_t count, float* out)
+{
+    constexpr int record = 8;
+    const hn::CappedTag<float, record> df;
+    const int step = int(hn::Lanes(df)), parts = record / step;
+    float means[record] = {}, moments[record] = {};
+    for (int r = 0; r < record; ++r) (r < s.channels ? means : moments)[r] = 1;
+    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * s.lanes; };
+    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 5 + std::size_t(field)) * s.lanes; };
+    const auto level_t = hn::Set(df, s.t);
+    for (std::size_t l = 0; l < count; ++l) {
+        float result[record] = {};
+        for (int k = 0; k < s.taps; ++k) {
+            hn::Vec<decltype(df)> sum[record] = {};
+            for (int h = 0; h < parts; ++h) sum[h] = hn::Zero(df);
+            for (int tile = 0; tile < 3; ++tile) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
+                const float w = at_fractions(run, 4)[l];
+                const auto vw = hn::Set(df, w);
+                auto bilinear = [&](const float* data, int field, int fraction, int h) {
+                    const float tx = at_fractions(run, fraction)[l], ty = at_fractions(run, fraction + 1)[l];
+                    const float* r0 = data + at_offsets(run, field)[l] + h * step;
+                    const float* r1 = data + at_offsets(run, field + 1)[l] + h * step;
+                    const auto vx = hn::Set(df, tx), vy = hn::Set(df, ty), sx = hn::Set(df, 1 - tx), sy = hn::Set(df, 1 - ty);
+                    const auto low = hn::Add(hn::Mul(sx, hn::LoadU(df, r0)), hn::Mul(vx, hn::LoadU(df, r0 + record)));
+                    const auto high = hn::Add(hn::Mul(sx, hn::LoadU(df, r1)), hn::Mul(vx, hn::LoadU(df, r1 + record)));
+                    return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
+                };
+                for (int h = 0; h < parts; ++h) {
+                    auto sample = bilinear(s.lower, 0, 0, h);
+                    if (s.upper) sample = hn::Add(sample, hn::Mul(level_t, hn::Sub(bilinear(s.upper, 2, 2, h), sample)));
+                    const auto weights = hn::Mul(vw, hn::Add(hn::LoadU(df, means + h * step), hn::Mul(vw, hn::LoadU(df, moments + h * step))));
+                    sum[h] = hn::Add(sum[h], hn::Mul(weights, sample));
+                }
+            }
+            float m[record];
+            for (int h = 0; h < parts; ++h) hn::StoreU(sum[h], df, m + h * step);
+            if (s.taps == 1) {
+                for (int r = 0; r < record; ++r) result[r] = m[r];
+                break;
+            }
+            // MomentMixture::add term for term (TilingNoise::planned_estimate), in single precision.
+            float delta[record];
+            for (int a = 0; a < s.channels; ++a) delta[a] = m[a] - result[a];
+            const float ratio = s.ratio[k], scatter = s.scatter[k];
+            for (int a = 0; a < s.channels; ++a) result[a] += ratio * delta[a];
+            for (int p = 0; p < s.pairs; ++p)
+                result[s.channels + p] += s.weight * m[s.channels + p] + scatter * (delta[s.first[p]] * delta[s.second[p]]);
+        }
+        float* o = out + l * record;
+        for (int r = 0; r < record; ++r) o[r] = s.taps == 1 || r < s.channels ? result[r] : result[r] * s.inverse_total;
+    }
+}
+
+}  // namespace stochtex::tiling_raster::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stochtex::tiling_raster {
+
+HWY_EXPORT(PlanTapRow);
+HWY_EXPORT(AccumulateTaps);
+
+void accumulate_taps(const TapSums& sums, std::size_t count, float* out) { HWY_DYNAMIC_DISPATCH(AccumulateTaps)(sums, count, out); }
+
+void plan_tap_row(const TapRow& row, const TileReads& out) { HWY_DYNAMIC_DISPATCH(PlanTapRow)(row, out); }
+
+}  // namespace stochtex::tiling_raster
+#endif

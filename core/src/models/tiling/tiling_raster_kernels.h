@@ -1,0 +1,94 @@
+// The tiling raster's address stage, vectorised across pixels with Highway
+// (tiling_raster_kernels.cpp, dispatched to the best instruction set of the CPU at run time).
+//
+// For one tap of a row of pixels — tap positions x[i] on one line y (a tap's offset from its
+// pixel is the footprint's, so a raster row's taps of one index share y) — it finds each
+// position's triangle (the blend weights) and, for each of the triangle's three tiles, where
+// the bilinear lookup reads the packed pyramid (two record offsets, the fractions). Lane by
+// lane it performs the IEEE operations of the scalar expressions it documents (no fused
+// multiply-add: the core builds with -ffp-contract=off), so every target gives the same bits
+// and a pixel's values do not depend on the lane it falls in.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace stochtex::tiling_raster {
+
+/// Vectors hold at most this many doubles on any target (AVX-512: 8): inputs are padded to it.
+constexpr std::size_t max_lanes = 8;
+
+/// A pyramid level's geometry for the address stage (PackedMomentPyramid::Level).
+struct LevelGeometry {
+    double scale_x, scale_y;          ///< texels per level-0 pixel
+    double width, height;             ///< texels (powers of two)
+    double inverse_width, inverse_height;
+    double row;                       ///< records per row (width + 1)
+};
+
+/// One tap row. Triangle (TilingGrid::blend's geometry with reciprocals): sy = (y / edge_y) ·
+/// 2/√3 and fy = sy − floor(sy) are the row's; per position sx = x · (1/edge_x) − ½ sy,
+/// cx = floor(sx), fx = sx − cx; below the diagonal (fx + fy < 1) the vertices are (cx, j),
+/// (cx + 1, j), (cx, j + 1) with B = (1 − fx − fy, fx, fy), else (cx + 1, j + 1), (cx + 1, j),
+/// (cx, j + 1) with B = (fx + fy − 1, 1 − fy, 1 − fx); w = B · (1 / √(B·B)).
+/// Tile k reads the exemplar at (x + T_x, y + T_y), T the vertex's translation, read from the
+/// row tables: row0 for vertex row j, row1 for j + 1, column c at vertex column i_min + c.
+/// Lookup (MomentPyramid::sample_level_linear's centres and wrap): lx = p · scale_x − ½,
+/// x0 = floor(lx), fx = float(lx − x0), ix = x0 − width · floor(x0 / width), likewise y; the
+/// records read are at (iy · row + ix) · 8 and ((iy + 1 mod height) · row + ix) · 8 floats.
+struct TapRow {
+    const double* x;  ///< n positions (n a multiple of max_lanes)
+    std::size_t n;
+    double y, sy, fy, inverse_edge_x;
+    double i_min;
+    const double* row0_x;
+    const double* row0_y;
+    const double* row1_x;
+    const double* row1_y;
+    LevelGeometry lower, upper;
+    bool has_upper;
+};
+
+/// Where tile k (0–2) of position i reads: at lower (and upper) level, the record offsets of
+/// the texel pair of rows iy and iy + 1, and the fractions; w its blend weight.
+struct TileReads {
+    std::int32_t* offset0[3];
+    std::int32_t* offset1[3];
+    float* fx[3];
+    float* fy[3];
+    std::int32_t* upper_offset0[3];  ///< used when has_upper
+    std::int32_t* upper_offset1[3];
+    float* upper_fx[3];
+    float* upper_fy[3];
+    float* weight[3];
+};
+
+void plan_tap_row(const TapRow& row, const TileReads& out);
+
+/// The lookups and the mixture of `count` positions from plan_tap_row's reads, stored as
+/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `lanes` values per
+/// field, offsets at offsets + (4 r + f) · lanes (f: lower row iy, lower row iy + 1, upper, upper),
+/// fractions at fractions + (5 r + f) · lanes (f: lower x, lower y, upper x, upper y, weight).
+/// Per position and tap, the three tiles' bilinear records (8 floats: lane-wise, in
+/// vectors of up to 8), blended towards the upper level by t, are summed as w · (means + w ·
+/// moments) · record (`means` 1 on the mean lanes, 0 on the moment lanes); the taps then
+/// combine as MomentMixture::add with the plan's ratio, scatter and weight, the moments
+/// divided by the weights' total at the end (one tap: its sum as it is).
+struct TapSums {
+    const float* lower;
+    const float* upper;  ///< null: one level
+    float t;
+    int taps, channels;
+    const std::int32_t* offsets;
+    const float* fractions;
+    std::size_t lanes;
+    const float* ratio;
+    const float* scatter;
+    float weight, inverse_total;
+    int pairs;
+    const int* first;  ///< moment lane channels + p is moment (first[p], second[p])
+    const int* second;
+};
+void accumulate_taps(const TapSums& sums, std::size_t count, float* out);
+
+}  // namespace stochtex::tiling_raster
