@@ -72,15 +72,7 @@ Image render_at_photo_scale(const TextureDescription& description)
     return render(*make_texture(description), settings);
 }
 
-std::string error_of(const std::function<void()>& action)
-{
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using stochtex::test::error_of;
 
 TEST(JointColour, KeepsTheColoursThePhotoHas)
 {
@@ -125,14 +117,7 @@ TEST(JointColour, RasterEqualsPointEvaluationAndMinificationConvergesToTheMean)
         region.du = 0.7 * pixel, region.dv = 1.3 * pixel;
         region.width = 13, region.height = 7;
         region.footprint = {region.du, 0, 0, region.dv};
-        std::vector<float> raster(std::size_t(region.width) * region.height * 3);
-        texture->eval_region(region, raster.data());
-        for (int j = 0; j < region.height; ++j)
-            for (int i = 0; i < region.width; ++i) {
-                const Rgb point = texture->eval({region.u(i), region.v(j)}, region.footprint);
-                for (int c = 0; c < 3; ++c)
-                    ASSERT_EQ(raster[(std::size_t(j) * region.width + i) * 3 + c], point[c]) << model << " pixel " << i << ", " << j;
-            }
+        EXPECT_EQ(test::raster_point_difference(*texture, region), "") << model;
         // Filtered away entirely, the texture is its mean (the curves' Gauss–Hermite expectation).
         const Rgb mean = texture->mean(), far = texture->eval({0.3, 0.7}, Footprint2D::square(1e4));
         const Image image = render_at_photo_scale(description);
