@@ -104,6 +104,7 @@ int AnalyzeCommand::run() const
     options.colour_mode = colour_mode_from_string(colour);
     options.try_colour_modes = colour_option && colour_option->count() == 0;
     options.histogram = histogram_mode_from_string(histogram);
+    options.joint_colour = joint_colour == "on";
     options.histogram_knots = knots;
     options.max_bands = bands;
     // Only what the user gave: the model checks it (and names options it does not have).
@@ -183,7 +184,8 @@ int ModelsCommand::run() const
         std::string can;
         for (const auto& [has, word] : std::initializer_list<std::pair<bool, const char*>>{
                  {c.analysis, "analyze"}, {c.solid, "solid"}, {c.morph, "morph"}, {c.pov_procedural, "pov-procedural"},
-                 {c.osl, "osl"}, {c.light_direction, "light"}, {c.gaussian_channels, "gaussian-channels"}})
+                 {c.osl, "osl"}, {c.light_direction, "light"}, {c.gaussian_channels, "gaussian-channels"},
+                 {c.joint_colour, "joint-colour"}})
             if (has) can += (can.empty() ? "" : ", ") + std::string(word);
         std::printf("%-8s %s\n         can: %s; %s\n", model->name.c_str(), model->summary.c_str(),
                     can.empty() ? "render" : can.c_str(), model->doc.c_str());

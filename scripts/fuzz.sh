@@ -58,6 +58,7 @@ make_seeds() {
   { printf '\2'; cat "$work/crop16.exr"; } >"$seeds/image/exr"
   # Every model's .stex (small options: seeds should be fast to read and render).
   "$stex" analyze "$work/crop64.png" -o "$seeds/stex/wavelet.stex" --model wavelet --bands 4 >/dev/null
+  "$stex" analyze "$work/crop64.png" -o "$seeds/stex/joint.stex" --model wavelet --bands 4 --joint-colour on >/dev/null
   "$stex" analyze "$work/crop64.png" -o "$seeds/stex/gabor.stex" --model gabor --bands 2 --impulses 4 >/dev/null
   "$stex" analyze "$work/crop64.png" -o "$seeds/stex/lrp.stex" --model lrp --J 8 --L 2 >/dev/null
   "$stex" analyze "$work/crop64.png" -o "$seeds/stex/tiling.stex" --model tiling >/dev/null

@@ -85,17 +85,7 @@ stochtex::TextureDescription analysed(const std::string& model)
     return stochtex::analyze(exemplar(), options);
 }
 
-/// The message of the Error `f` throws ("" if it throws none).
-template <class F>
-std::string error_of(F&& f)
-{
-    try {
-        f();
-    } catch (const stochtex::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using stochtex::test::error_of;
 
 std::string read_bytes(const fs::path& path)
 {

@@ -23,15 +23,7 @@ namespace {
 
 using namespace stochtex;
 
-std::string error_of(const std::function<void()>& action)
-{
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using stochtex::test::error_of;
 
 /// The top-left size² of the committed exemplar.
 Image exemplar_crop(int size)

@@ -40,17 +40,7 @@ std::string read_bytes(const std::string& path)
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// The message of the Error `action` throws ("" if none).
-template <class Action>
-std::string error_of(Action&& action)
-{
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using stochtex::test::error_of;
 
 bool starts_with(const std::string& text, const std::string& prefix) { return text.compare(0, prefix.size(), prefix) == 0; }
 
@@ -150,15 +140,7 @@ TEST_P(ModelConformance, RasterRegionEqualsPointEvaluation)
         region.du = 0.7 * pixel(), region.dv = 1.3 * pixel();
         region.x0 = 5, region.y0 = 3, region.width = 13, region.height = 7;
         region.footprint = {region.du, 0, 0, region.dv};
-        std::vector<float> raster(std::size_t(region.width) * region.height * 3);
-        texture->eval_region(region, raster.data());
-        for (int j = 0; j < region.height; ++j)
-            for (int i = 0; i < region.width; ++i) {
-                const Rgb point = texture->eval({region.u(i), region.v(j)}, region.footprint);
-                for (int c = 0; c < 3; ++c)
-                    ASSERT_EQ(raster[(std::size_t(j) * region.width + i) * 3 + c], point[c])
-                        << "pixel " << i << ", " << j << (periodic ? " (periodic)" : "");
-            }
+        EXPECT_EQ(test::raster_point_difference(*texture, region), "") << (periodic ? "periodic" : "plain");
     }
 }
 

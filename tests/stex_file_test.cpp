@@ -281,7 +281,7 @@ TEST(StexFileErrors, UnknownAndMissingKeys)
     EXPECT_TRUE(starts_with(message, "t.stex: extra: unknown field (expected one of: format, version, ")) << message;
 
     EXPECT_EQ(parse_error(edited([](Json& j) { j["colour"]["gamma"] = 2.2; })),
-              "t.stex: colour.gamma: unknown field (expected one of: space, mode, mean, basis)");
+              "t.stex: colour.gamma: unknown field (expected one of: space, mode, mean, basis, chroma_given_brightness (optional))");
     EXPECT_EQ(parse_error(edited([](Json& j) { j["histograms"][2]["knots"] = 4; })),
               "t.stex: histograms[2].knots: unknown field (expected one of: z, value)");
     EXPECT_EQ(parse_error(edited([](Json& j) { j["scale"].erase("unit_size_m"); })),

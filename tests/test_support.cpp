@@ -1,5 +1,8 @@
 #include "test_support.h"
 
+#include <stochtex/error.h>
+#include <stochtex/texture.h>
+
 #include <filesystem>
 
 #include <cerrno>
@@ -20,6 +23,33 @@ extern char** environ;
 namespace fs = std::filesystem;
 
 namespace stochtex::test {
+
+std::string raster_point_difference(const Texture& texture, const RasterRegion& region)
+{
+    std::vector<float> raster(std::size_t(region.width) * region.height * 3);
+    texture.eval_region(region, raster.data());
+    for (int j = 0; j < region.height; ++j)
+        for (int i = 0; i < region.width; ++i) {
+            const Rgb point = texture.eval({region.u(i), region.v(j)}, region.footprint);
+            for (int c = 0; c < 3; ++c) {
+                const float value = raster[(std::size_t(j) * region.width + i) * 3 + c];
+                if (value != point[c])
+                    return "pixel " + std::to_string(i) + ", " + std::to_string(j) + " channel " + std::to_string(c) +
+                           ": raster " + std::to_string(value) + ", point " + std::to_string(point[c]);
+            }
+        }
+    return "";
+}
+
+std::string error_of(const std::function<void()>& action)
+{
+    try {
+        action();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
 
 std::string shared_exemplar(const std::string& name)
 {

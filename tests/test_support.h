@@ -1,9 +1,15 @@
 // Shared helpers for the tests: where the exemplars are, temporary files.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
+
+namespace stochtex {
+class Texture;
+struct RasterRegion;
+}
 
 namespace stochtex::test {
 
@@ -13,6 +19,14 @@ std::string shared_exemplar(const std::string& name);
 std::string repo_exemplar(const std::string& name);
 /// A fresh, empty directory for this test's files, private to this process.
 std::string temp_dir(const std::string& test_name);
+
+/// The message of the stochtex::Error `action` throws, "" if it throws none (another exception
+/// propagates: the test fails with it).
+std::string error_of(const std::function<void()>& action);
+
+/// The first value where texture.eval_region(region) differs from eval() at that pixel's centre
+/// and the region's footprint ("pixel I, J channel C: raster R, point P"); "" when all are equal.
+std::string raster_point_difference(const Texture& texture, const RasterRegion& region);
 
 /// How a program run ended and what it printed.
 struct ProgramResult {

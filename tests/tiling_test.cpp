@@ -372,15 +372,7 @@ TEST(TilingTexture, ColourMappedAndNormalMapSourcesRender)
 
 using Json = nlohmann::ordered_json;
 
-std::string error_of(const std::function<void()>& action)
-{
-    try {
-        action();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using stochtex::test::error_of;
 
 /// The error of parsing the committed texture's JSON after `edit`.
 std::string edited_error(const std::function<void(Json&)>& edit)

@@ -34,6 +34,11 @@ struct AnalysisOptions {
     /// (ModelInfo::automatic_colour_modes) instead of colour_mode alone — for when the user
     /// did not choose one (`stex analyze` without --colour).
     bool try_colour_modes = false;
+    /// Joint colour (pca mode, models with Gaussian channels): the chroma channels conditioned on
+    /// brightness (TextureDescription::chroma_given_brightness), which keeps colours the photo
+    /// never had from appearing. Off by default (and in `stex analyze` unless --joint-colour on)
+    /// until POV-Ray's procedural mode and the OSL shaders can express it.
+    bool joint_colour = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports

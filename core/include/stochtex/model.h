@@ -20,6 +20,9 @@ struct ModelCapabilities {
     bool osl = false;                ///< `stex osl` can write it as an OSL shader
     bool light_direction = false;    ///< evaluated for a light direction (stochtex/lighting.h)
     bool gaussian_channels = false;  ///< Gaussian decorrelated channels with a σ_M (channel_map.h)
+    /// Analysis can tie the chroma channels to brightness (`--joint-colour`): the synthesis maps
+    /// decorrelated channels through the shared colour stage (TextureDescription::chroma_given_brightness).
+    bool joint_colour = false;
 };
 
 /// One declared parameter: of a model's .stex "parameters" block, or an analysis option.

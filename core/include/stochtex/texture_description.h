@@ -39,6 +39,20 @@ struct HistogramMap {
     bool enabled() const { return !z.empty(); }
 };
 
+/// Chroma given brightness (the "joint colour" of `stex analyze --joint-colour`): decorrelated
+/// channels 1 and 2 (the chroma axes) as y_c = location_c(z_0) + scale_c(z_0) · r_c, where z_0 is
+/// channel 0's standard-normal variate and r_c channel c's own (histogram-mapped) noise. The
+/// curves are piecewise linear through knots z (uniform, symmetric about 0), constant beyond
+/// the end knots. A photo whose dark and bright parts have different hues (grey-blue and yellow
+/// stones) keeps them together; three independent channels would mix them into colours the
+/// photo never had. Empty: the channels are independent (y_c = r_c).
+struct ChromaGivenBrightness {
+    std::vector<double> z;
+    std::array<std::vector<double>, 2> location;  ///< channels 1 and 2, at the knots
+    std::array<std::vector<double>, 2> scale;     ///< channels 1 and 2, at the knots (> 0)
+    bool enabled() const { return !z.empty(); }
+};
+
 /// A small image stored inside a .stex file: `channels` planes of width × height samples
 /// quantised to `bits` (8 or 16). Sample q of channel c stands for
 /// ranges[c][0] + q / (2^bits − 1) · (ranges[c][1] − ranges[c][0]).
@@ -145,6 +159,8 @@ struct TextureDescription {
     std::array<std::array<double, 3>, 3> basis{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
     /// Per decorrelated channel; each may be disabled (empty).
     std::array<HistogramMap, 3> histograms;
+    /// Chroma channels conditioned on brightness (pca colour mode only); empty: independent.
+    ChromaGivenBrightness chroma_given_brightness;
 
     Provenance provenance;
 

@@ -3,6 +3,7 @@
 #include <stochtex/stex_file.h>
 
 #include "analysis/model_choice.h"
+#include "colour/chroma_given_brightness.h"
 #include "colour/colour_basis.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
@@ -105,6 +106,11 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
     description.mean = colour.mean;
     description.basis = colour.basis;
     std::array<std::vector<float>, 3> channels = decorrelate(photo, colour);
+    // Joint colour replaces the chroma channels by what brightness leaves of them, before their
+    // histograms and spectra are fitted.
+    const bool joint_colour = options.joint_colour && options.colour_mode == ColourMode::pca &&
+                              model.info().capabilities.joint_colour;
+    if (joint_colour) description.chroma_given_brightness = fit_chroma_given_brightness(channels);
 
     // Step 3 per channel: optional Gaussianisation.
     for (int c = 0; c < 3; ++c) {
@@ -131,6 +137,7 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
                           {"colour", to_string(options.colour_mode)},
                           {"histogram", to_string(options.histogram)},
                           {"knots", std::to_string(options.histogram_knots)}};
+    if (description.chroma_given_brightness.enabled()) provenance.options.emplace_back("joint_colour", "on");
 
     // Step 4: the model's own parameters (and its provenance options).
     report(0.5, "spectrum");

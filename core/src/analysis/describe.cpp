@@ -4,7 +4,7 @@
 #include "analysis/info_text.h"
 #include "models/model.h"
 
-
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -42,6 +42,13 @@ std::string describe(const TextureDescription& d)
         }
         out << d.histograms[c].z.size() << " knots, values " << info_text("%.4f .. %.4f", d.histograms[c].value.front(), d.histograms[c].value.back())
             << "\n";
+    }
+    if (const ChromaGivenBrightness& joint = d.chroma_given_brightness; joint.enabled()) {
+        const auto range = [](const std::vector<double>& v) {
+            return info_text("%.4f .. %.4f", *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end()));
+        };
+        out << "joint colour chroma given brightness, " << joint.z.size() << " knots; scale 1: " << range(joint.scale[0])
+            << ", scale 2: " << range(joint.scale[1]) << "\n";
     }
     const Model& model = model_of(d);
     // The declared scalar parameters, as stored, with their units (the declaration says which

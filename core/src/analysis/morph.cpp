@@ -53,6 +53,9 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
     if (a.colour_mode != b.colour_mode)
         throw Error(std::string("morph: colour modes differ (") + to_string(a.colour_mode) + " vs " +
                     to_string(b.colour_mode) + ")");
+    if (a.chroma_given_brightness.enabled() || b.chroma_given_brightness.enabled())
+        throw Error("morph: joint colour (colour.chroma_given_brightness) is not interpolated; analyse both photos "
+                    "with --joint-colour off to morph them");
     if (t == 0) return a;
     if (t == 1) return b;
 

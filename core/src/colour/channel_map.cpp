@@ -2,6 +2,7 @@
 
 #include <stochtex/error.h>
 
+#include "colour/chroma_given_brightness.h"
 #include "colour/histogram_map.h"
 #include "models/model.h"
 
@@ -30,6 +31,7 @@ struct ChannelFunction {
 
 ChannelFunction channel_function(const TextureDescription& description, int channel)
 {
+    require_independent_channels(description, "channel colour map");
     ChannelFunction f;
     f.sigma = channel_sigma(description, channel);
     const HistogramMap& histogram = description.histograms[channel];

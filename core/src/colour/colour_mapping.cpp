@@ -5,7 +5,7 @@
 namespace stochtex {
 
 ColourMapping::ColourMapping(const TextureDescription& description, const std::array<double, 3>& sigma_m)
-    : sigma_m_(sigma_m), mean_(description.mean), basis_(description.basis)
+    : sigma_m_(sigma_m), chroma_(description.chroma_given_brightness), mean_(description.mean), basis_(description.basis)
 {
     for (int c = 0; c < 3; ++c) {
         const HistogramMap& map = description.histograms[c];
@@ -29,6 +29,7 @@ Rgb ColourMapping::to_rgb(const std::array<double, 3>& z, const std::array<doubl
 {
     std::array<double, 3> y;
     for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
+    condition(z[0], dropped_sigma[0], y);
     return combine(y);
 }
 

@@ -5,8 +5,12 @@
 // minification passes the standard deviation (in units of σ_M) of what it removed; the map
 // then returns E[f(z + σ_d Z)], Z ~ N(0, 1) (Gauss–Hermite), the correctly filtered value, so
 // minification converges to the texture's true mean rather than to the median f(0).
+//
+// With joint colour (chroma_given_brightness.h) the chroma channels' values then become
+// location(z_0) + scale(z_0) · y_c, filtered the same way.
 #pragma once
 
+#include "colour/chroma_given_brightness.h"
 #include "colour/histogram_map.h"
 
 #include <stochtex/texture.h>
@@ -37,13 +41,20 @@ public:
     double map_channel(int c, double z, double dropped_sigma) const;
     /// Whether channel c has a histogram map (else it stays Gaussian: map_channel is linear).
     bool has_map(int c) const { return !maps_[c].empty(); }
-    /// to_rgb's second step: the colour of mapped channel values y.
+    /// to_rgb's second step: the chroma channels given brightness z0 (filtered by dropped0), when
+    /// the description has joint colour; y unchanged otherwise.
+    void condition(double z0, double dropped0, std::array<double, 3>& y) const
+    {
+        if (chroma_.enabled()) chroma_.apply(z0, dropped0, y[1], y[2]);
+    }
+    /// to_rgb's last step: the colour of mapped channel values y.
     Rgb combine(const std::array<double, 3>& y) const;
 
 private:
 
     std::array<double, 3> sigma_m_;
     std::array<MonotoneCubic, 3> maps_;  // empty: channel stays Gaussian
+    ChromaConditioning chroma_;          // disabled: independent channels
     std::array<double, 3> mean_;
     std::array<std::array<double, 3>, 3> basis_;
 };

@@ -253,7 +253,7 @@ void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain
 {
     // Blocks small enough for the stack and the L1 cache.
     constexpr std::size_t block = 256;
-    double z[block], t[block], f[block], y[3][block];
+    double z[block], t[block], f[block], y[3][block], z0[block];
     const GaussHermite& rule = GaussHermite::standard_normal();
     const double flat_basis[9] = {basis_[0][0], basis_[0][1], basis_[0][2], basis_[1][0], basis_[1][1],
                                   basis_[1][2], basis_[2][0], basis_[2][1], basis_[2][2]};
@@ -275,7 +275,15 @@ void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain
                     HWY_DYNAMIC_DISPATCH(colour_batch::AddWeighted)(f, rule.weight[i], y[c], n);
                 }
             }
+            if (c == 0) std::copy(z, z + n, z0);
         }
+        if (chroma_.enabled())
+            for (std::size_t i = 0; i < n; ++i) {
+                // condition()'s arithmetic, item by item: bit-identical to to_rgb().
+                std::array<double, 3> item{y[0][i], y[1][i], y[2][i]};
+                condition(z0[i], dropped_sigma[0], item);
+                y[1][i] = item[1], y[2][i] = item[2];
+            }
         const double* rows[3] = {y[0], y[1], y[2]};
         float* channel[3];
         for (int c = 0; c < 3; ++c) channel[c] = out.channel[c] + (first + start) * out.stride;

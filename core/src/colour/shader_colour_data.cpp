@@ -1,5 +1,6 @@
 #include <stochtex/models/shader_colour_data.h>
 
+#include "colour/chroma_given_brightness.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
 
@@ -7,6 +8,7 @@ namespace stochtex {
 
 ShaderColourData shader_colour_data(const TextureDescription& description)
 {
+    require_independent_channels(description, "OSL shader");
     ShaderColourData data;
     data.mean = description.mean;
     data.basis = description.basis;

@@ -63,6 +63,7 @@ Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::ar
 {
     std::array<double, 3> y;
     for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
+    exact_.condition(z[0], dropped_sigma[0], y);
     return exact_.combine(y);
 }
 

@@ -207,7 +207,7 @@ std::string models_json()
         json["capabilities"] = {{"analysis", c.analysis},         {"solid", c.solid},
                                 {"morph", c.morph},               {"pov_procedural", c.pov_procedural},
                                 {"osl", c.osl},                   {"light_direction", c.light_direction},
-                                {"gaussian_channels", c.gaussian_channels}};
+                                {"gaussian_channels", c.gaussian_channels}, {"joint_colour", c.joint_colour}};
         json["parameters"] = json_fields::Json::array();
         for (const ParameterInfo& p : info.parameters) json["parameters"].push_back(parameter_json(p));
         json["analysis_options"] = json_fields::Json::array();

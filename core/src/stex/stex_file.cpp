@@ -25,6 +25,7 @@ using json_fields::Json;
 
 constexpr double orthonormal_tolerance = 1e-4;
 constexpr std::size_t min_histogram_knots = 4;
+constexpr std::size_t max_chroma_knots = 64;
 
 // ---- Checks shared by the reader and validate() ------------------------------------------------
 
@@ -104,6 +105,44 @@ void validate_histogram(const HistogramMap& histogram, const std::string& path, 
     }
 }
 
+void validate_chroma_given_brightness(const TextureDescription& description, const std::string& source)
+{
+    const ChromaGivenBrightness& curves = description.chroma_given_brightness;
+    const std::string path = "colour.chroma_given_brightness";
+    if (!curves.enabled()) return;
+    if (description.colour_mode != ColourMode::pca)
+        json_fields::fail(source, path, "needs colour mode pca (the chroma axes), got " + std::string(to_string(description.colour_mode)));
+    if (!model_info(description.model).capabilities.joint_colour)
+        json_fields::fail(source, path, "model '" + description.model + "' has no joint colour (its colours are not decorrelated noise channels)");
+    const std::vector<double>& z = curves.z;
+    if (z.size() < 2 || z.size() > max_chroma_knots)
+        json_fields::fail(source, path + ".z",
+                          "expected 2 to " + std::to_string(max_chroma_knots) + " knots, got " + std::to_string(z.size()));
+    for (std::size_t i = 0; i < z.size(); ++i) check_float_finite(z[i], json_path(path + ".z", i), source);
+    // Uniform knots: evaluation (here and in shaders) finds the segment by one multiplication.
+    const double step = (z.back() - z.front()) / double(z.size() - 1);
+    if (!(step > 0))
+        json_fields::fail(source, path + ".z", "knots must be increasing");
+    for (std::size_t i = 1; i < z.size(); ++i)
+        if (!(std::abs(z[i] - z[i - 1] - step) <= 1e-9 * (1 + std::abs(step))))
+            json_fields::fail(source, json_path(path + ".z", i), "knots must be uniformly spaced (step " + number_text(step) + ")");
+    for (std::size_t c = 0; c < 2; ++c) {
+        const std::string location = json_path(path + ".location", c), scale = json_path(path + ".scale", c);
+        if (curves.location[c].size() != z.size())
+            json_fields::fail(source, location, "has " + std::to_string(curves.location[c].size()) + " values for " +
+                                                    std::to_string(z.size()) + " knots");
+        if (curves.scale[c].size() != z.size())
+            json_fields::fail(source, scale, "has " + std::to_string(curves.scale[c].size()) + " values for " +
+                                                 std::to_string(z.size()) + " knots");
+        for (std::size_t i = 0; i < z.size(); ++i) {
+            check_float_finite(curves.location[c][i], json_path(location, i), source);
+            check_float_finite(curves.scale[c][i], json_path(scale, i), source);
+            if (!(curves.scale[c][i] > 0))
+                json_fields::fail(source, json_path(scale, i), "must be positive, got " + number_text(curves.scale[c][i]));
+        }
+    }
+}
+
 /// Also used for the plugin's open-time hints, hence public through validate_image_layout().
 void check_image_layout(const ImageLayout& image, const std::string& source)
 {
@@ -169,7 +208,7 @@ ImageLayout read_image_layout(const Field& image)
 
 void read_colour(const Field& colour, TextureDescription& description)
 {
-    colour.expect_keys({"space", "mode", "mean", "basis"});
+    colour.expect_keys({"space", "mode", "mean", "basis"}, {"chroma_given_brightness"});
     description.colour_space = colour["space"].string();
     const Field mode = colour["mode"];
     try {
@@ -180,6 +219,15 @@ void read_colour(const Field& colour, TextureDescription& description)
     description.mean = colour["mean"].numbers<3>();
     std::vector<Field> rows = colour["basis"].elements(3, "rows");
     for (std::size_t row = 0; row < 3; ++row) description.basis[row] = rows[row].numbers<3>();
+    if (!colour.contains("chroma_given_brightness")) return;
+    const Field joint = colour["chroma_given_brightness"];
+    joint.expect_keys({"z", "location", "scale"});
+    ChromaGivenBrightness& curves = description.chroma_given_brightness;
+    curves.z = joint["z"].numbers();
+    const std::vector<Field> location = joint["location"].elements(2, "chroma channels");
+    const std::vector<Field> scale = joint["scale"].elements(2, "chroma channels");
+    for (std::size_t c = 0; c < 2; ++c) curves.location[c] = location[c].numbers(), curves.scale[c] = scale[c].numbers();
+    if (!curves.enabled()) joint.fail("independent channels are written without chroma_given_brightness, not with empty knots");
 }
 
 void read_histograms(const Field& histograms, TextureDescription& description)
@@ -248,6 +296,12 @@ Json to_json(const TextureDescription& description)
     colour["mode"] = to_string(description.colour_mode);
     colour["mean"] = description.mean;
     colour["basis"] = description.basis;
+    if (const ChromaGivenBrightness& curves = description.chroma_given_brightness; curves.enabled()) {
+        Json& joint = colour["chroma_given_brightness"];
+        joint["z"] = curves.z;
+        joint["location"] = {curves.location[0], curves.location[1]};
+        joint["scale"] = {curves.scale[0], curves.scale[1]};
+    }
 
     Json& histograms = root["histograms"] = Json::array();
     for (const HistogramMap& map : description.histograms) {
@@ -328,6 +382,7 @@ void validate(const TextureDescription& description, const std::string& source)
     validate_basis(description, source);
     for (std::size_t c = 0; c < 3; ++c)
         validate_histogram(description.histograms[c], json_path("histograms", c), source);
+    validate_chroma_given_brightness(description, source);
 
     const Provenance& provenance = description.provenance;
     if (provenance.source_width < 0 || provenance.source_height < 0)

@@ -120,6 +120,7 @@ ModelInfo gabor_info()
     info.capabilities.solid = true;
     info.capabilities.morph = true;
     info.capabilities.gaussian_channels = true;
+    info.capabilities.joint_colour = true;
     info.capabilities.osl = true;
     return info;
 }

@@ -21,6 +21,7 @@ ModelInfo lrp_info()
                    "share of the photo's own phases for structure; 2D only";
     info.doc = "docs/models/lrp.md";
     info.capabilities.analysis = true;
+    info.capabilities.joint_colour = true;
     return info;
 }
 

@@ -79,6 +79,7 @@ ModelInfo wavelet_info()
     info.capabilities.pov_procedural = true;
     info.capabilities.osl = true;
     info.capabilities.gaussian_channels = true;
+    info.capabilities.joint_colour = true;
     return info;
 }
 

@@ -1,0 +1,60 @@
+// Joint colour: the chroma channels conditioned on brightness (TextureDescription's
+// chroma_given_brightness; docs/models/README.md, "False colour").
+//
+// Three decorrelated channels synthesised independently reproduce each channel's histogram but
+// not how they go together: where the photo's dark stones are grey-blue and its bright ones
+// yellow, independent channels also make bright blue and dark red, colours the photo never had
+// (14.5 % of gravel's pixels, by false_colour_rate()). A location–scale model of each chroma
+// channel given the brightness channel's standard-normal variate z_0,
+//     y_c = location_c(z_0) + scale_c(z_0) · r_c,     c = 1, 2,
+// keeps hue and saturation tied to brightness. r_c is what remains of the chroma channel once
+// brightness is accounted for; the models synthesise it as before (its spectrum, its histogram
+// map), independently of z_0. Filtering keeps its meaning: with the kept and dropped parts
+// independent, E[y_c] = E[location_c(z_0 + d_0 Z)] + E[scale_c(z_0 + d_0 Z′)] · E[r_c], each a
+// one-dimensional Gauss–Hermite expectation like the histogram maps'.
+#pragma once
+
+#include <stochtex/texture_description.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace stochtex {
+
+/// Fits the curves to a photo's decorrelated channels (pca mode) and replaces channels 1 and 2
+/// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)), which the
+/// histogram maps and the models' spectra are then fitted to. Knots are uniform in
+/// [−z_max, z_max]; each is a Gaussian-kernel regression over its neighbourhood (bandwidth: the
+/// knot spacing). Returns an empty description (channels unchanged) when brightness or both
+/// chroma channels are constant.
+ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>, 3>& channels, int knots = 49,
+                                                  double z_max = 3.0);
+
+/// Throws Error naming `what` when the description has joint colour: for the front-ends that
+/// rebuild the colour stage channel by channel (POV-Ray colour maps, OSL shaders) and cannot
+/// express a chroma channel that depends on brightness yet.
+void require_independent_channels(const TextureDescription& description, const std::string& what);
+
+/// Evaluation of the curves (uniform knots, linear interpolation, constant beyond the ends).
+class ChromaConditioning {
+public:
+    ChromaConditioning() = default;
+    explicit ChromaConditioning(const ChromaGivenBrightness& curves);
+
+    bool enabled() const { return !z_.empty(); }
+    /// y1, y2 (channel 1 and 2's own values r_c) become location + scale · r_c at brightness z0,
+    /// averaged over the brightness detail filtering removed (dropped0, in σ_M units).
+    void apply(double z0, double dropped0, double& y1, double& y2) const;
+    /// The curves of channels 1 and 2 at brightness z0, averaged over dropped0 as apply() does.
+    void curves_at(double z0, double dropped0, double location[2], double scale[2]) const;
+
+private:
+    double curve(const std::vector<double>& values, double z) const;
+
+    std::vector<double> z_;
+    std::array<std::vector<double>, 2> location_, scale_;
+    double inverse_step_ = 0;
+};
+
+}  // namespace stochtex
