@@ -112,9 +112,10 @@ for h in "${harnesses[@]}"; do
     corpus="$build/fuzz/corpus/$h"; mkdir -p "$corpus"; limit=(-max_total_time="$seconds")
   fi
   log="$out/$h.log"
-  # Leaks inside the libraries we call are suppressed by name (fuzz/lsan.supp says why). The one
-  # in OIIO's PNG reader is only found with full stacks (libstdc++ has no frame pointers, so the
-  # fast unwinder stops before OIIO's frames): the image harness unwinds slowly, the others fast.
+  # Leaks inside the libraries we call are suppressed by name (fuzz/lsan.supp says why). OIIO's
+  # PNG reader's leak is matched by its OIIO frame with full stacks and by its string allocation
+  # with fast ones (libstdc++ has no frame pointers, so the fast unwinder stops there): the image
+  # harness unwinds slowly (full stacks in its reports), the others fast.
   sanitizer_env=(LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp")
   [ "$h" = image ] && sanitizer_env+=(ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0")
   start=$(date +%s)
