@@ -1,7 +1,8 @@
 // stochtex — benchmarks of the hot paths, with the references they compete with, in one run.
 //
 //   Analyze/...      analysis of a 512² RGB photo (top-left crop of exemplars/dirt.png); goal ≤ 30 ms
-//   Render2D/...     512×512 filtered renders through stochtex::render(), 1 and 2 threads
+//   Render2D/...     512×512 filtered renders through stochtex::render(), 1 and 2 threads; hist:on,
+//                    hist:off, and hist:on/joint:on (joint colour: the chroma curves' cost)
 //   Render3D/...     the same raster as a solid (3D) texture slice
 //   Raster2D/...     the same 512² raster evaluated on the calling thread, in 8-row bands like
 //   Raster3D/...     render(): path:simd is the model's raster method (Texture::eval_region /
@@ -142,23 +143,25 @@ void set_pixel_rate(benchmark::State& state, double pixels_per_iteration)
 struct Model {
     stochtex::TextureDescription description;
     std::unique_ptr<stochtex::Texture> texture;
-    std::string histogram;  // "on" / "off"
+    std::string histogram;  // "on" / "off", and "on/joint:on" with joint colour
 };
 
-stochtex::AnalysisOptions analysis_options(const Exemplar& exemplar, stochtex::HistogramMode mode)
+stochtex::AnalysisOptions analysis_options(const Exemplar& exemplar, stochtex::HistogramMode mode, bool joint_colour = false)
 {
     stochtex::AnalysisOptions options;
     options.histogram = mode;
+    options.joint_colour = joint_colour;
     options.source_name = exemplar.source;
     return options;
 }
 
-Model make_model(const Exemplar& exemplar, stochtex::HistogramMode mode)
+Model make_model(const Exemplar& exemplar, stochtex::HistogramMode mode, bool joint_colour = false)
 {
     Model model;
-    model.description = stochtex::analyze(exemplar.image, analysis_options(exemplar, mode));
+    model.description = stochtex::analyze(exemplar.image, analysis_options(exemplar, mode, joint_colour));
     model.texture = stochtex::make_texture(model.description);
     model.histogram = histogram_state(model.description);
+    if (model.description.chroma_given_brightness.enabled()) model.histogram += "/joint:on";
     return model;
 }
 
@@ -368,12 +371,14 @@ int main(int argc, char** argv)
 
     // Everything below runs before any timing: it also builds the shared noise tiles.
     static Exemplar exemplar;
-    static Model hist_on, hist_off;
+    static Model hist_on, hist_off, joint;
     static Image baked;
     try {
         exemplar = load_exemplar();
         hist_on = make_model(exemplar, stochtex::HistogramMode::on);
         hist_off = make_model(exemplar, stochtex::HistogramMode::off);
+        // Joint colour's cost: its curves per pixel, Gauss–Hermite averaged where bands fade.
+        joint = make_model(exemplar, stochtex::HistogramMode::on, true);
         baked = stochtex::render(*hist_on.texture, raster_settings(hist_on, false, 0));
         stochtex::render(*hist_on.texture, raster_settings(hist_on, true, 0));
     } catch (const std::exception& e) {
@@ -391,7 +396,7 @@ int main(int argc, char** argv)
             ->UseRealTime();
     }
     for (bool solid : {false, true})
-        for (const Model* model : {&hist_on, &hist_off})
+        for (const Model* model : {&hist_on, &hist_off, &joint})
             for (int threads : {1, 2}) {
                 const std::string name = std::string(solid ? "Render3D/" : "Render2D/") + size + "/bands:" +
                                          std::to_string(band_count(model->description)) + "/hist:" + model->histogram +
