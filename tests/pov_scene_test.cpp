@@ -128,7 +128,8 @@ PooledComparison compare_pooled(const std::vector<Image>& reference, const std::
                 if (i == 0) {
                     psd = one;
                 } else {
-                    for (std::size_t b = 0; b < one.power.size(); ++b) psd.power[b] += one.power[b];
+                    for (std::size_t b = 0; b < one.power.size(); ++b)
+                        psd.power[b] += one.power[b], psd.samples[b] += one.samples[b];
                 }
             }
         };

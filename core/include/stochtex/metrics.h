@@ -18,11 +18,21 @@ namespace stochtex {
 struct RadialPsd {
     std::vector<double> frequency;  ///< bin centre, cycles per pixel
     std::vector<double> power;      ///< mean periodogram power in the bin
+    /// FFT samples averaged in each bin (conjugate pairs counted twice, as in PolarPsd). Empty
+    /// for a spectrum that is exact rather than estimated (an analytic model's): every bin counts.
+    std::vector<double> samples;
 };
 RadialPsd radial_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave = 4);
 
-/// RMS over the frequency bins both spectra have (matched by frequency) of 10·log10(Pa/Pb), in dB.
-double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b);
+/// The fewest FFT samples a radius bin of an estimated spectrum must hold to count in a
+/// distance (≥ 64 independent ones: the periodogram's own noise ≲ 0.5 dB per bin). Below it, two
+/// realisations of one texture differ by dBs (3.3 dB at 256² with every bin counted), so the
+/// distance would measure the sample, not the texture. The 2D distance uses the same floor.
+constexpr int resolved_bin_samples = 128;
+
+/// RMS over the frequency bins both spectra have (matched by frequency) and both resolve (hold
+/// at least min_samples samples, or are exact) of 10·log10(Pa/Pb), in dB.
+double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b, int min_samples = resolved_bin_samples);
 
 /// The orientation of one channel's power spectrum (mean removed; Moisan's periodic component,
 /// so image edges add no "+"): the power-weighted mean of e^{2iθ} over all frequencies, θ a
@@ -58,12 +68,12 @@ PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int b
 /// raised to a floor 60 dB under the strongest sector of either (an 8-bit photo's quantisation
 /// floor against a float render's nothing is a difference no one sees). Throws if no radius bin
 /// qualifies (images too small, or different grids).
-double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
+double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples = resolved_bin_samples);
 /// The orientation part of polar_log_psd_distance_db: the same sectors and weights, each
 /// sector's power divided by its radius bin's mean power (its own radial PSD there) before the
 /// dB difference, so a level error shared by all directions (a missing octave, a gain) drops
 /// out and only the angular profiles are compared. 0 in bins where only d = 1 qualifies.
-double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples = 128);
+double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples = resolved_bin_samples);
 
 /// One channel's periodogram density (radial_psd's estimator) on a centred size×size grid for
 /// display: cell (i, j) holds the mean over the FFT samples with frequency

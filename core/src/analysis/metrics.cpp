@@ -155,6 +155,7 @@ RadialPsd radial_psd_of(const WindowedSpectrum& spectrum, int bins_per_octave) {
         if (sample_count[bin] == 0) continue;
         psd.frequency.push_back(radial_bin_centre(bin, bins_per_octave));
         psd.power.push_back(power_sum[bin] / sample_count[bin] * spectrum.density_scale);
+        psd.samples.push_back(sample_count[bin]);
     }
     return psd;
 }
@@ -326,19 +327,28 @@ CentredSpectrum centred_spectrum(const std::vector<float>& plane, int width, int
     return centred_spectrum_of(windowed_spectrum(plane, width, height, "centred_spectrum"), size);
 }
 
-double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b) {
+namespace {
+/// log_psd_distance_db, or NaN where the spectra share bins with power but none that both
+/// resolve (images too small for the measure: compare_images reports "n/a", as for the 2D one).
+double log_psd_distance_or_nan(const RadialPsd& a, const RadialPsd& b, int min_samples) {
+    const auto resolved = [min_samples](const RadialPsd& psd, std::size_t bin) {
+        return psd.samples.empty() || psd.samples[bin] >= min_samples;
+    };
     // Both are sorted by ascending frequency; centres of shared bins are computed identically,
     // the tolerance only absorbs spectra that went through a file or another computation.
     double sum_squares = 0;
-    int common_bins = 0;
+    int powered_bins = 0, common_bins = 0;
     std::size_t i = 0, j = 0;
     while (i < a.frequency.size() && j < b.frequency.size()) {
         const double fa = a.frequency[i], fb = b.frequency[j];
         if (std::abs(fa - fb) <= 1e-9 * std::max(fa, fb)) {
             if (a.power[i] > 0 && b.power[j] > 0) {
-                const double db = 10.0 * std::log10(a.power[i] / b.power[j]);
-                sum_squares += db * db;
-                ++common_bins;
+                ++powered_bins;
+                if (resolved(a, i) && resolved(b, j)) {
+                    const double db = 10.0 * std::log10(a.power[i] / b.power[j]);
+                    sum_squares += db * db;
+                    ++common_bins;
+                }
             }
             ++i, ++j;
         } else if (fa < fb) {
@@ -347,10 +357,20 @@ double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b) {
             ++j;
         }
     }
-    if (common_bins == 0)
+    if (powered_bins == 0)
         throw Error("log_psd_distance_db: the spectra share no frequency bin where both have power "
                     "(a constant channel, or different bins_per_octave?)");
+    if (common_bins == 0) return std::numeric_limits<double>::quiet_NaN();
     return std::sqrt(sum_squares / common_bins);
+}
+}  // namespace
+
+double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b, int min_samples) {
+    const double distance = log_psd_distance_or_nan(a, b, min_samples);
+    if (std::isnan(distance))
+        throw Error("log_psd_distance_db: no frequency bin where both spectra hold " + std::to_string(min_samples) +
+                    " samples (images too small for the measure)");
+    return distance;
 }
 
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b) {
@@ -532,8 +552,9 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
         report.w1[c] = wasserstein1(reference_plane, test_plane);
         report.w1_relative[c] = report.w1[c] / report.stddev_reference[c];
         try {
-            report.log_psd_db[c] = log_psd_distance_db(radial_psd(reference_plane, reference.width, reference.height),
-                                                       radial_psd(test_plane, test.width, test.height));
+            report.log_psd_db[c] = log_psd_distance_or_nan(radial_psd(reference_plane, reference.width, reference.height),
+                                                           radial_psd(test_plane, test.width, test.height),
+                                                           resolved_bin_samples);
         } catch (const Error& e) {
             throw Error(std::string("compare_images: channel ") + kChannelNames[c] + ": " + e.what());
         }
@@ -597,8 +618,14 @@ std::string format_report(const ComparisonReport& report) {
                   kChannelNames[2]);
     text += line;
     const auto add_row = [&](const char* label, const std::array<double, 3>& values) {
-        std::snprintf(line, sizeof line, "%-14s %12.5g %12.5g %12.5g\n", label, values[0], values[1], values[2]);
+        std::snprintf(line, sizeof line, "%-14s", label);
         text += line;
+        for (double v : values) {
+            if (std::isnan(v)) std::snprintf(line, sizeof line, " %12s", "n/a");  // too small to measure
+            else std::snprintf(line, sizeof line, " %12.5g", v);
+            text += line;
+        }
+        text += "\n";
     };
     add_row("mean ref", report.mean_reference);
     add_row("mean test", report.mean_test);
