@@ -191,8 +191,8 @@ struct ModelRegistration {
 /// A number option in [min, max] (or the word `word`, when given, e.g. "auto").
 AnalysisOption number_option(const char* key, double min, double max, FieldDoc doc, std::string word = "",
                              bool max_open = false);
-/// An integer option in [min, max].
-AnalysisOption integer_option(const char* key, long min, long max, FieldDoc doc);
+/// An integer option in [min, max] (or the word `word`, when given, e.g. "auto").
+AnalysisOption integer_option(const char* key, long min, long max, FieldDoc doc, std::string word = "");
 /// One of `choices`.
 AnalysisOption choice_option(const char* key, std::vector<std::string> choices, FieldDoc doc);
 

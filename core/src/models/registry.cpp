@@ -241,16 +241,17 @@ AnalysisOption number_option(const char* key, double min, double max, FieldDoc d
     return option;
 }
 
-AnalysisOption integer_option(const char* key, long min, long max, FieldDoc doc)
+AnalysisOption integer_option(const char* key, long min, long max, FieldDoc doc, std::string word)
 {
     const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
     AnalysisOption option;
-    option.info = {key, "integer", range, doc.default_value, doc.unit, doc.doc, {}};
+    option.info = {key, "integer", word.empty() ? range : word + " or " + range, doc.default_value, doc.unit, doc.doc, {}};
     option.canonical = [=](const std::string& text) {
+        if (!word.empty() && text == word) return word;
         char* end = nullptr;
         const long value = std::strtol(text.c_str(), &end, 10);
         if (text.empty() || end != text.c_str() + text.size() || value < min || value > max)
-            throw Error("must be an integer in " + range + ", got '" + text + "'");
+            throw Error("must be " + (word.empty() ? "" : word + " or ") + "an integer in " + range + ", got '" + text + "'");
         return std::to_string(value);  // (an integer's text is exact)
     };
     return option;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stochtex {
 
@@ -50,11 +51,11 @@ constexpr int crops_with_spectrum_compared = 3;
 
 }  // namespace
 
-CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                      int crop_width, int crop_height)
+RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                       int crop_width, int crop_height)
 {
     const CropOrigin centred{(width - crop_width) / 2, (height - crop_height) / 2};
-    if (crop_width == width && crop_height == height) return centred;
+    if (crop_width == width && crop_height == height) return {centred, 0, 0};
     const FidelityTargets targets;
     // The whole photo's distributions, sampled to about 64k values; the crops' to about 16k.
     const int whole_step = std::max(1, int(std::sqrt(double(width) * height / 65536.0)));
@@ -73,7 +74,7 @@ CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& c
     // the channels' distributions of the rendered colours, which this sees through each axis).
     struct Scored {
         CropOrigin origin;
-        double w1_term = 0, total = 0;
+        double w1_term = 0, spectrum_term = 0, total = 0;
     };
     std::vector<Scored> scored;
     const auto positions = [](int free, int count) {
@@ -93,7 +94,7 @@ CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& c
                 w1 = std::max(w1, wasserstein1_of_sorted(sorted_sample(channels[c], width, origin.x, origin.y, crop_width,
                                                                        crop_height, crop_step),
                                                          whole[c]) / sigma[c]);
-        scored.push_back({origin, w1 / targets.w1_sigma, 0});
+        scored.push_back({origin, w1 / targets.w1_sigma, 0, 0});
     }
     // Then the spectrum of the main channel (the first: PCA's largest variance) for the best few,
     // each term in units of its fidelity target, as the automatic model choice weighs them.
@@ -103,10 +104,41 @@ CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& c
     for (Scored& s : scored) {
         const RadialPsd crop_psd = radial_psd(region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
                                               crop_width, crop_height);
-        s.total = s.w1_term + log_psd_distance_db(crop_psd, whole_psd) / targets.radial_log_psd_db;
+        s.spectrum_term = log_psd_distance_db(crop_psd, whole_psd) / targets.radial_log_psd_db;
+        s.total = s.w1_term + s.spectrum_term;
     }
-    return std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.total < b.total; })
-        ->origin;
+    const Scored& best =
+        *std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.total < b.total; });
+    return {best.origin, best.w1_term, best.spectrum_term};
+}
+
+namespace {
+
+/// The exemplar sides automatic sizing tries, smallest first; a file grows 4× a step.
+constexpr int automatic_exemplar_sides[] = {256, 512, 1024};
+
+/// The crop sides (powers of two) of an exemplar of at most `side` in a width × height photo.
+std::array<int, 2> crop_sides(int width, int height, int side)
+{
+    return {power_of_two_floor(std::min(width, side)), power_of_two_floor(std::min(height, side))};
+}
+
+}  // namespace
+
+std::array<int, 2> automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height)
+{
+    std::array<int, 2> chosen{};
+    double chosen_total = std::numeric_limits<double>::infinity();
+    for (int side : automatic_exemplar_sides) {
+        // Past the first, a side is tried only where the photo holds it twice along each axis:
+        // an exemplar as large as its photo is a copy, not a sample, and always "representative".
+        if (side != automatic_exemplar_sides[0] && 2 * side > std::min(width, height)) break;
+        const std::array<int, 2> sides = crop_sides(width, height, side);
+        const RepresentativeCrop crop = representative_crop(channels, width, height, sides[0], sides[1]);
+        if (crop.representative()) return sides;  // the smallest that stands for the photo
+        if (crop.w1_term + crop.spectrum_term < chosen_total) chosen = sides, chosen_total = crop.w1_term + crop.spectrum_term;
+    }
+    return chosen;  // none meets both targets: the closest
 }
 
 std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
@@ -124,16 +156,17 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits)
 {
-    if (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side)
+    if (max_side != automatic_exemplar_side && (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side))
         throw Error("tiling exemplar size must be in [" + std::to_string(min_tiling_exemplar_side) + ", " +
                     std::to_string(max_tiling_exemplar_side) + "], got " + std::to_string(max_side));
     if (bits != 8 && bits != 16) throw Error("tiling exemplar bits must be 8 or 16, got " + std::to_string(bits));
-    const int crop_width = power_of_two_floor(std::min(width, max_side));
-    const int crop_height = power_of_two_floor(std::min(height, max_side));
-    if (crop_width < min_tiling_exemplar_side || crop_height < min_tiling_exemplar_side)
+    const std::array<int, 2> sides = crop_sides(width, height, max_side == automatic_exemplar_side ? automatic_exemplar_sides[0] : max_side);
+    if (sides[0] < min_tiling_exemplar_side || sides[1] < min_tiling_exemplar_side)
         throw Error("image is " + std::to_string(width) + "x" + std::to_string(height) + ", too small for a tiling exemplar (at least " +
                     std::to_string(min_tiling_exemplar_side) + "x" + std::to_string(min_tiling_exemplar_side) + ")");
-    const CropOrigin origin = representative_crop_origin(channels, width, height, crop_width, crop_height);
+    const auto [crop_width, crop_height] =
+        max_side == automatic_exemplar_side ? automatic_exemplar_crop(channels, width, height) : sides;
+    const CropOrigin origin = representative_crop(channels, width, height, crop_width, crop_height).origin;
     std::vector<std::vector<float>> planes;
     for (int c = 0; c < 3; ++c) {
         std::vector<float>& plane = planes.emplace_back(periodic_crop(channels[c], width, height, crop_width, crop_height, origin));

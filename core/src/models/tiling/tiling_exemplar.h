@@ -19,14 +19,32 @@ struct CropOrigin {
     int x = -1, y = -1;
 };
 
+/// A crop of a photo and how well it stands for the whole: its channels' value distributions
+/// (W1 in σ, the worst channel) and its main channel's radial spectrum (log-PSD dB) against the
+/// whole photo's, each in units of its fidelity target (stochtex/metrics.h, FidelityTargets).
+struct RepresentativeCrop {
+    CropOrigin origin;
+    double w1_term = 0, spectrum_term = 0;
+    /// Both on target: its statistics are the photo's to within what a synthesis is asked for.
+    bool representative() const { return w1_term <= 1 && spectrum_term <= 1; }
+};
+
 /// The crop_width × crop_height crop of the decorrelated channels that best stands for the whole
 /// photo: of positions evenly spaced over it (the centred one included, and kept on ties), the
-/// one whose channels' value distributions (W1 in σ, the worst channel) and main channel's radial
-/// spectrum (log-PSD dB) are closest to the whole photo's, each in units of its fidelity target
-/// (stochtex/metrics.h, FidelityTargets). A photo whose centre is lighter or smoother than the
-/// rest no longer gives a texture that is.
-CropOrigin representative_crop_origin(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                      int crop_width, int crop_height);
+/// one with the lowest sum of the two terms. A photo whose centre is lighter or smoother than
+/// the rest no longer gives a texture that is.
+RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                       int crop_width, int crop_height);
+
+/// fit_tiling_exemplar's max_side for "auto" (`--exemplar-size auto`, the default).
+constexpr int automatic_exemplar_side = 0;
+
+/// The crop sides automatic sizing keeps: the smallest of 256², 512², 1024² (the larger ones only
+/// where the photo holds them twice along each axis) whose representative crop is on both
+/// targets; where none is, the closest. A photo whose large-scale variation a 256² crop misses
+/// (karst rock's plates) gets the larger exemplar it needs, one a 256² crop serves keeps its
+/// 4× smaller file.
+std::array<int, 2> automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height);
 
 /// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
 /// (Moisan's periodic component, which keeps the crop's mean).
@@ -35,7 +53,8 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
 
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
 /// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
-/// representative crop (representative_crop_origin) of at most max_side² pixels, periodic, at `bits` bits. A channel with a map is stored
+/// representative crop (representative_crop) of at most max_side² pixels (automatic_exemplar_side:
+/// automatic_exemplar_crop's size), periodic, at `bits` bits. A channel with a map is stored
 /// in standard-normal units by the crop's own ranks (the map's input), the others in channel
 /// units with the whole channel's mean and σ, so the texture's histograms are the photo's and
 /// the texture passes stored values to ColourMapping unscaled.

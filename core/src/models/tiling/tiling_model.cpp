@@ -32,7 +32,10 @@ public:
     {
         declare_analysis_options(
             {integer_option("exemplar-size", 16, 1024,
-                            {"256", "px", "largest exemplar side; the exemplar is the photo's most representative crop, sides powers of two"}),
+                            {"auto", "px",
+                             "largest exemplar side (sides powers of two); auto: the smallest of 256, 512, 1024 whose most "
+                             "representative crop is within the fidelity targets of the whole photo (W1, radial spectrum)"},
+                            "auto"),
              choice_option("exemplar-bits", {"8", "16"}, {"8", "bits", "bits per stored exemplar sample"})});
     }
 
@@ -47,9 +50,10 @@ public:
     ModelParameters fit(const FitInput& input, Provenance& provenance) const override
     {
         // The exemplar itself (a periodic crop of the decorrelated channels) is the model.
-        const int size = std::stoi(input.model_options.at("exemplar-size"));
+        const std::string& size_text = input.model_options.at("exemplar-size");
+        const int size = size_text == "auto" ? automatic_exemplar_side : std::stoi(size_text);
         const int bits = std::stoi(input.model_options.at("exemplar-bits"));
-        provenance.options.insert(provenance.options.end(), {{"exemplar_size", std::to_string(size)},
+        provenance.options.insert(provenance.options.end(), {{"exemplar_size", size_text},
                                                              {"exemplar_bits", std::to_string(bits)}});
         return fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits);
     }
