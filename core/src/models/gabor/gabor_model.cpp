@@ -143,11 +143,11 @@ ParameterSchema<GaborParameters> gabor_schema()
             }
         });
     per_octave_numbers(schema, "orientations", &P::orientations, orientation_range, "degrees",
-                       "Kind oriented: per octave, the angle of the oriented kernels' frequency ω from u towards v "
-                       "(ω and −ω are the same noise).");
+                       "Kind oriented only (required there, absent otherwise): per octave, the angle of the oriented "
+                       "kernels' frequency ω in the (u, v) plane, from u towards v (ω and −ω are the same noise).");
     per_octave_numbers(schema, "oriented_fractions", &P::oriented_fractions, fraction_range, "",
-                       "Kind oriented: per octave, the share of the kernels that are oriented (the others isotropic): "
-                       "0 isotropic, 1 all along orientations[k].");
+                       "Kind oriented only (required there, absent otherwise): per octave, the share of the kernels "
+                       "that are oriented (the others isotropic): 0 isotropic, 1 all along orientations[k].");
     return schema;
 }
 
