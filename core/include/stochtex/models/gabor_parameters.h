@@ -15,6 +15,10 @@ enum class GaborKind {
     isotropic,    ///< ω uniform on the sphere |ω| = F: every slice looks alike (granite, sand)
     anisotropic,  ///< ω = F·direction for every kernel: oriented (wood grain, brushed metal)
     hybrid,       ///< ω uniform on the circle |ω| = F in the plane normal to `direction`
+    /// Per octave k, a fraction oriented_fractions[k] of the kernels has ω = F·(cos θ_k, sin θ_k, 0),
+    /// θ_k = orientations[k], and the rest draw ω as isotropic ones: oriented coarse ripples over
+    /// isotropic fine grain (sand dunes, bark). All fractions 0 is the isotropic noise exactly.
+    oriented,
 };
 const char* to_string(GaborKind kind);
 GaborKind gabor_kind_from_string(const std::string& name);  // throws Error
@@ -35,6 +39,10 @@ struct GaborParameters {
     std::vector<double> frequencies;
     /// weights[c][k]: standard deviation of octave k in channel c (as many as frequencies).
     std::array<std::vector<double>, 3> weights;
+    /// Kind oriented only (empty otherwise), one per octave: the frequency direction θ_k of the
+    /// oriented kernels in degrees, from u towards v, in [−90, 90] (ω and −ω are the same noise),
+    /// and the fraction of the octave's kernels that are oriented, in [0, 1].
+    std::vector<double> orientations, oriented_fractions;
 };
 
 }  // namespace stochtex

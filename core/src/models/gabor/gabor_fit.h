@@ -11,6 +11,14 @@
 // rings would render solid slices with too much low-frequency power (measured in
 // tests/gabor_test.cpp, docs/models/gabor.md). The weights are then scaled so each channel's
 // variance is the photo's exactly.
+//
+// Oriented octaves (kind oriented, gabor_parameters.h). Each octave k's annulus of the photo's 2D
+// power spectrum, [F_k/√2, F_k·√2], gives the power-weighted mean of e^{2iθ} over its
+// frequencies: its argument is the octave's orientation, and its length — debiased for the
+// periodogram's noise, then divided by the length an all-oriented octave of this bandwidth has
+// in that annulus — the octave's oriented fraction (an isotropic octave's length is 0, and a
+// mixture's is linear in the fraction). The weights are then refitted with the sliced spectrum
+// of the octaves' mean mixture.
 #pragma once
 
 #include <stochtex/texture_description.h>
@@ -23,6 +31,9 @@ namespace stochtex {
 
 struct GaborFitOptions {
     GaborKind kind = GaborKind::isotropic;
+    /// With kind oriented: write kind isotropic (no per-octave arrays) when no octave is oriented,
+    /// the isotropic fit exactly (`--gabor-kind auto`).
+    bool isotropic_if_unoriented = false;
     double impulses_per_kernel = 16;
     double bandwidth = 0;  ///< a/F; 0: chosen by the fit (isotropic, hybrid) or from the anisotropy
     int octaves = 8;

@@ -22,15 +22,16 @@ const char* to_string(GaborKind kind)
     case GaborKind::isotropic: return "isotropic";
     case GaborKind::anisotropic: return "anisotropic";
     case GaborKind::hybrid: return "hybrid";
+    case GaborKind::oriented: return "oriented";
     }
     throw Error("invalid GaborKind value " + std::to_string(static_cast<int>(kind)));
 }
 
 GaborKind gabor_kind_from_string(const std::string& name)
 {
-    for (GaborKind kind : {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid})
+    for (GaborKind kind : {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid, GaborKind::oriented})
         if (name == to_string(kind)) return kind;
-    throw Error("unknown Gabor kind '" + name + "' (valid: isotropic, anisotropic, hybrid)");
+    throw Error("unknown Gabor kind '" + name + "' (valid: isotropic, anisotropic, hybrid, oriented)");
 }
 
 namespace {
@@ -44,16 +45,37 @@ constexpr double unit_tolerance = 1e-4;
 const NumberRange frequency_range{1e-6, 1, ""};
 const NumberRange bandwidth_range{1.0 / 16, 16, ""};
 const NumberRange impulse_range{1, 256, ""};
+const NumberRange orientation_range{-90, 90, "degrees"};
+const NumberRange fraction_range{0, 1, ""};
+
+/// One optional per-octave array of the oriented kind: present exactly when the kind is oriented
+/// (checked with the frequencies, which every file has), each value in `range`.
+void per_octave_numbers(ParameterSchema<GaborParameters>& schema, const char* key,
+                        std::vector<double> GaborParameters::*member, const NumberRange& range, const char* unit,
+                        const char* doc)
+{
+    using P = GaborParameters;
+    ParameterInfo info{key, "array of numbers", "one per octave, each in " + range.text(), "", unit, doc, {}};
+    schema.optional_custom(
+        info, [member](const P& p) { return !(p.*member).empty(); },
+        [member](const json_fields::Field& f, P& p, const ReadContext&) { p.*member = f.numbers(); },
+        [member](const P& p) { return json_fields::Json(p.*member); },
+        [member, range](const P& p, const std::string& path, const std::string& source) {
+            for (std::size_t k = 0; k < (p.*member).size(); ++k)
+                check_in_range((p.*member)[k], range, json_path(path, k), source);
+        });
+}
 
 ParameterSchema<GaborParameters> gabor_schema()
 {
     using P = GaborParameters;
     ParameterSchema<P> schema;
     schema.enumeration("kind", &P::kind, to_string, gabor_kind_from_string,
-                       {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid},
+                       {GaborKind::isotropic, GaborKind::anisotropic, GaborKind::hybrid, GaborKind::oriented},
                        {"isotropic", "", "Which frequencies the kernels draw: isotropic (uniform on the sphere |ω| = F), "
-                                         "anisotropic (ω = F·direction) or hybrid (uniform on the circle |ω| = F in the "
-                                         "plane normal to direction)."});
+                                         "anisotropic (ω = F·direction), hybrid (uniform on the circle |ω| = F in the "
+                                         "plane normal to direction) or oriented (per octave, a share of the kernels "
+                                         "along that octave's orientation, the others isotropic)."});
     schema.numbers("direction", &P::direction, {}, {"[0, 0, 1]", "", "A unit vector (length within 1e-4 of 1) in solid texture space "
                                                                    "(u, v, w): the frequency direction (anisotropic) or the normal "
                                                                    "of the frequency plane (hybrid). Unused by isotropic noise, but "
@@ -84,6 +106,20 @@ ParameterSchema<GaborParameters> gabor_schema()
                                                  std::to_string(octaves));
                        for (std::size_t k = 0; k < octaves; ++k)
                            check_in_range(p.frequencies[k], frequency_range, json_path(path, k), source);
+                       // The oriented kind's per-octave arrays: there exactly when the kind is oriented.
+                       const std::string parent = path.substr(0, path.rfind('.'));
+                       const bool oriented = p.kind == GaborKind::oriented;
+                       for (const auto& [key, values] : {std::pair{"orientations", &p.orientations},
+                                                         std::pair{"oriented_fractions", &p.oriented_fractions}}) {
+                           if (!oriented && !values->empty())
+                               json_fields::fail(source, json_path(parent, key), "is only valid with kind oriented");
+                           if (oriented && values->size() != octaves)
+                               json_fields::fail(source, json_path(parent, key),
+                                                 values->empty() ? std::string("is required by kind oriented (one per octave)")
+                                                                 : "has " + std::to_string(values->size()) +
+                                                                       " values but frequencies has " +
+                                                                       std::to_string(octaves) + " octaves");
+                       }
                    });
     schema.channel_numbers(
         "weights", &P::weights,
@@ -106,6 +142,12 @@ ParameterSchema<GaborParameters> gabor_schema()
                 }
             }
         });
+    per_octave_numbers(schema, "orientations", &P::orientations, orientation_range, "degrees",
+                       "Kind oriented only (required there, absent otherwise): per octave, the angle of the oriented "
+                       "kernels' frequency ω in the (u, v) plane, from u towards v (ω and −ω are the same noise).");
+    per_octave_numbers(schema, "oriented_fractions", &P::oriented_fractions, fraction_range, "",
+                       "Kind oriented only (required there, absent otherwise): per octave, the share of the kernels "
+                       "that are oriented (the others isotropic): 0 isotropic, 1 all along orientations[k].");
     return schema;
 }
 
@@ -125,6 +167,19 @@ ModelInfo gabor_info()
     return info;
 }
 
+/// `p`, as kind oriented with every fraction 0 (the same noise) when it is isotropic and `other` is
+/// oriented.
+GaborParameters as_oriented_if(const GaborParameters& p, GaborKind other)
+{
+    GaborParameters result = p;
+    if (p.kind == GaborKind::isotropic && other == GaborKind::oriented) {
+        result.kind = GaborKind::oriented;
+        result.orientations.assign(p.frequencies.size(), 0.0);
+        result.oriented_fractions.assign(p.frequencies.size(), 0.0);
+    }
+    return result;
+}
+
 class GaborModel final : public TextureModelOf<GaborParameters, GaborTexture> {
 public:
     GaborModel() : TextureModelOf(gabor_info(), gabor_schema())
@@ -142,11 +197,13 @@ public:
         };
         bandwidth.info.range = "auto, 0 or [0.0625, 16]";
         declare_analysis_options(
-            {choice_option("gabor-kind", {"isotropic", "anisotropic", "hybrid"},
-                           {"isotropic", "",
-                            "isotropic (frequencies on a sphere: slices alike in every direction), anisotropic (one "
-                            "orientation, measured from the photo: wood, brushed metal) or hybrid (frequencies in the "
-                            "(u, v) plane)"}),
+            {choice_option("gabor-kind", {"auto", "isotropic", "anisotropic", "hybrid", "oriented"},
+                           {"auto", "",
+                            "auto (isotropic, with oriented octaves where the photo's spectrum shows an orientation: "
+                            "kind oriented), isotropic (frequencies on a sphere: slices alike in every direction), "
+                            "anisotropic (one orientation for all octaves, measured from the photo: wood, brushed "
+                            "metal), hybrid (frequencies in the (u, v) plane) or oriented (auto, kept oriented even "
+                            "where no octave is)"}),
              number_option("impulses", 1, 256, {"16", "impulses", "impulses per kernel (quality vs speed; ~16 looks Gaussian)"}),
              bandwidth});
     }
@@ -157,18 +214,22 @@ public:
         std::ostringstream out;
         const GaborParameters& g = parameters(d);
         out << "gabor        " << to_string(g.kind);
-        if (g.kind != GaborKind::isotropic)
+        if (g.kind == GaborKind::anisotropic || g.kind == GaborKind::hybrid)
             out << info_text(g.kind == GaborKind::anisotropic ? ", frequency direction (%.3f, %.3f, %.3f)"
                                                            : ", frequency plane normal (%.3f, %.3f, %.3f)",
                           g.direction[0], g.direction[1], g.direction[2]);
         out << "; bandwidth a/F " << info_text("%.3g", g.bandwidth) << ", " << info_text("%.3g", g.impulses_per_kernel)
             << " impulses per kernel\n";
-        out << "octave  cycles/px  wavelength px  kernel radius px     w[0]      w[1]      w[2]\n";
+        const bool oriented = g.kind == GaborKind::oriented;
+        out << "octave  cycles/px  wavelength px  kernel radius px     w[0]      w[1]      w[2]"
+            << (oriented ? "  oriented  angle °" : "") << "\n";
         for (std::size_t k = 0; k < g.frequencies.size(); ++k) {
             const double f = g.frequencies[k];
             out << info_text("%6.0f  %9.5f  %13.1f", double(k), f, 1 / f)
                 << info_text("  %16.1f", GaborNoise::support_radius(g.bandwidth * f))
-                << info_text("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]) << "\n";
+                << info_text("  %8.5f  %8.5f  %8.5f", g.weights[0][k], g.weights[1][k], g.weights[2][k]);
+            if (oriented) out << info_text("  %8.2f  %7.1f", g.oriented_fractions[k], g.orientations[k]);
+            out << "\n";
         }
         for (int c = 0; c < 3; ++c)
             out << "sigma_M[" << c << "]   " << info_text("%.5f", gabor_channel_sigma(g.weights[c]))
@@ -180,7 +241,9 @@ public:
     {
         const std::map<std::string, std::string>& options = input.model_options;
         GaborFitOptions fit;
-        fit.kind = gabor_kind_from_string(options.at("gabor-kind"));
+        const std::string& kind = options.at("gabor-kind");
+        fit.kind = kind == "auto" ? GaborKind::oriented : gabor_kind_from_string(kind);
+        fit.isotropic_if_unoriented = kind == "auto";
         fit.impulses_per_kernel = std::stod(options.at("impulses"));
         fit.bandwidth = options.at("bandwidth") == "auto" ? 0 : std::stod(options.at("bandwidth"));
         fit.octaves = input.band_count;
@@ -197,8 +260,9 @@ public:
     /// normalised lerp after aligning signs (ω and −ω describe the same random-phase noise).
     ModelParameters morph(const TextureDescription& da, const TextureDescription& db, double t) const override
     {
-        const GaborParameters& a = parameters(da);
-        const GaborParameters& b = parameters(db);
+        // An isotropic texture is an oriented one without oriented kernels: the two morph.
+        const GaborParameters a = as_oriented_if(parameters(da), parameters(db).kind);
+        const GaborParameters b = as_oriented_if(parameters(db), parameters(da).kind);
         if (a.kind != b.kind)
             throw Error(std::string("morph: Gabor kinds differ (") + to_string(a.kind) + " vs " + to_string(b.kind) + ")");
         GaborParameters result = a;
@@ -219,6 +283,21 @@ public:
             const double fa = k < a.frequencies.size() ? a.frequencies[k] : b.frequencies[k];
             const double fb = k < b.frequencies.size() ? b.frequencies[k] : a.frequencies[k];
             result.frequencies[k] = std::exp(lerp(std::log(fa), std::log(fb), t));
+        }
+        if (a.kind == GaborKind::oriented) {
+            // Fractions linearly, orientations by their doubled angles (θ and θ + 180° are one
+            // orientation); a missing octave is isotropic at the other texture's orientation.
+            result.orientations.resize(count), result.oriented_fractions.resize(count);
+            for (std::size_t k = 0; k < count; ++k) {
+                const double pa = k < a.frequencies.size() ? a.oriented_fractions[k] : 0.0;
+                const double pb = k < b.frequencies.size() ? b.oriented_fractions[k] : 0.0;
+                const double ta = (k < a.frequencies.size() ? a.orientations[k] : b.orientations[k]) * M_PI / 90;
+                const double tb = (k < b.frequencies.size() ? b.orientations[k] : a.orientations[k]) * M_PI / 90;
+                const double x = lerp((pa + 1e-9) * std::cos(ta), (pb + 1e-9) * std::cos(tb), t);
+                const double y = lerp((pa + 1e-9) * std::sin(ta), (pb + 1e-9) * std::sin(tb), t);
+                result.oriented_fractions[k] = lerp(pa, pb, t);
+                result.orientations[k] = std::atan2(y, x) * 90 / M_PI;
+            }
         }
         for (int c = 0; c < 3; ++c) {
             result.weights[c].assign(count, 0.0);

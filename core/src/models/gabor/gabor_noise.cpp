@@ -67,6 +67,7 @@ namespace {
 // an input for indices of any practical size.
 constexpr std::uint64_t step_i = 0xd1b54a32d192ed03ull, step_j = 0xaef17502108ef2d9ull, step_k = 0xf39cc0605cedc835ull;
 constexpr std::uint64_t attribute_offset = 0x9e3779b97f4a7c15ull;
+constexpr std::uint64_t oriented_offset = 0x632be59bd9b4e019ull;
 
 }  // namespace
 
@@ -82,6 +83,8 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     const double length = std::sqrt(dot3(d, d));
     if (parameters.kind != GaborKind::isotropic && !(std::abs(length - 1) < 1e-3))
         throw std::invalid_argument("GaborNoise: direction must be a unit vector");
+    const double p = parameters.oriented_fraction;
+    if (!(p >= 0 && p <= 1)) throw std::invalid_argument("GaborNoise: the oriented fraction must be in [0, 1]");
 
     radius_ = support_radius(a);
     // The 2D and the solid noise of one seed are unrelated processes.
@@ -110,8 +113,10 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     gain_2d_ = 1 / std::sqrt(density_2d * 0.5 / (2 * a * a) * energy_2d);
     gain_3d_ = 1 / std::sqrt(density_3d * 0.5 * std::pow(2 * a * a, -1.5) * energy_3d);
 
-    if (parameters.kind == GaborKind::anisotropic) {
+    if (parameters.kind == GaborKind::anisotropic || parameters.kind == GaborKind::oriented) {
         omega_ = {f * d[0] / length, f * d[1] / length, f * d[2] / length};
+        // 53-bit draws: a fraction of 1 keeps every impulse (draws are < 2^53), 0 none.
+        if (parameters.kind == GaborKind::oriented) oriented_below_ = std::uint64_t(std::ldexp(p, 53));
     } else if (parameters.kind == GaborKind::hybrid) {
         const TangentFrame plane = tangent_frame(d, {0, 0, 0});
         plane_e1_ = plane.t;
@@ -135,9 +140,13 @@ std::uint64_t GaborNoise::cell_key_3d(std::int64_t i, std::int64_t j, std::int64
     return key_3d_ + std::uint64_t(i) * step_i + std::uint64_t(j) * step_j + std::uint64_t(k) * step_k;
 }
 
-inline Vec3 GaborNoise::frequency_of(std::uint64_t attributes) const
+inline Vec3 GaborNoise::frequency_of(std::uint64_t key, std::uint64_t attributes) const
 {
     const double f = parameters_.frequency;
+    // Oriented or isotropic: a draw of its own (every attribute bit is taken), made only for the
+    // oriented kind, so the other kinds' impulses are what they always were; the isotropic ones
+    // of an oriented noise are those of the isotropic noise of the same seed.
+    if (parameters_.kind == GaborKind::oriented && (mix64(key + oriented_offset) >> 11) < oriented_below_) return omega_;
     const int azimuth = int((attributes >> (3 * phase_bits)) & (phase_count - 1));
     const double c = phase_table.cosine[azimuth], s = phase_table.sine[azimuth];
     switch (parameters_.kind) {
@@ -145,7 +154,8 @@ inline Vec3 GaborNoise::frequency_of(std::uint64_t attributes) const
     case GaborKind::hybrid:
         return {f * (c * plane_e1_[0] + s * plane_e2_[0]), f * (c * plane_e1_[1] + s * plane_e2_[1]),
                 f * (c * plane_e1_[2] + s * plane_e2_[2])};
-    case GaborKind::isotropic: break;
+    case GaborKind::isotropic:
+    case GaborKind::oriented: break;
     }
     // Uniform on the sphere: cos(colatitude) uniform in [−1, 1] (not the colatitude itself).
     const double z = 2 * ((double(attributes >> 40) + 0.5) * 0x1.0p-24) - 1;
@@ -360,7 +370,7 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
     // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
     auto push_impulse = [&](std::uint64_t key, double cx, double cy, double cz) {
         const std::uint64_t attributes = mix64(key + attribute_offset);
-        const Vec3 omega = fixed ? omega_ : frequency_of(attributes);
+        const Vec3 omega = fixed ? omega_ : frequency_of(key, attributes);
         cells.x.push_back(cx);
         cells.y.push_back(cy);
         cells.z.push_back(cz);
@@ -469,7 +479,7 @@ std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_2d(double x, double y
     for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t i = i0; i <= i1; ++i) {
             const std::uint64_t key = cell_key_2d(i, j), bits = mix64(key), attributes = mix64(key + attribute_offset);
-            const Vec3 omega = frequency_of(attributes);
+            const Vec3 omega = frequency_of(key, attributes);
             Impulse impulse{{(i + position_fraction(bits)) * cell_x_, (j + position_fraction(bits >> 21)) * cell_y_, 0},
                             {omega[0], omega[1], 0}, {}};
             for (int c = 0; c < max_channels; ++c) impulse.phase[c] = phase_angle(phase_index(attributes, c));
@@ -491,7 +501,7 @@ std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_3d(const Vec3& p, dou
                 const std::uint64_t key = cell_key_3d(i, j, k), bits = mix64(key), attributes = mix64(key + attribute_offset);
                 Impulse impulse{{(i + position_fraction(bits)) * s, (j + position_fraction(bits >> 21)) * s,
                                  (k + position_fraction(bits >> 42)) * s},
-                                frequency_of(attributes), {}};
+                                frequency_of(key, attributes), {}};
                 for (int c = 0; c < max_channels; ++c) impulse.phase[c] = phase_angle(phase_index(attributes, c));
                 impulses.push_back(impulse);
             }

@@ -44,7 +44,9 @@ struct GaborNoiseParameters {
     GaborKind kind = GaborKind::isotropic;
     double frequency = 1;  ///< F = |ω|, cycles per noise unit
     double bandwidth = 1;  ///< a, per noise unit (the envelope is exp(−π a² |x|²))
-    Vec3 direction{0, 0, 1};  ///< anisotropic: ω / F; hybrid: normal of the plane of ω
+    Vec3 direction{0, 0, 1};  ///< anisotropic, oriented: ω / F; hybrid: normal of the plane of ω
+    /// Oriented kind: the fraction of the impulses with ω = F·direction; the others are isotropic.
+    double oriented_fraction = 0;
     double impulses_per_kernel = 16;
     std::uint64_t seed = 1;
     int channels = 3;  ///< 1 or 3 independent phase sets
@@ -116,8 +118,8 @@ private:
 
     std::uint64_t cell_key_2d(std::int64_t i, std::int64_t j) const;
     std::uint64_t cell_key_3d(std::int64_t i, std::int64_t j, std::int64_t k) const;
-    /// ω of an impulse (3D) from its attribute bits.
-    Vec3 frequency_of(std::uint64_t attributes) const;
+    /// ω of an impulse (3D) of cell `key` from its attribute bits.
+    Vec3 frequency_of(std::uint64_t key, std::uint64_t attributes) const;
 
     GaborNoiseParameters parameters_;
     std::uint64_t key_2d_ = 0, key_3d_ = 0;  // the seed, mixed
@@ -126,7 +128,8 @@ private:
     std::int64_t wrap_x_ = 0, wrap_y_ = 0;  // periodic 2D: cells per period, else 0
     double cell_3d_ = 0;
     double gain_2d_ = 1, gain_3d_ = 1;  // 1 / σ of the raw sums
-    Vec3 omega_{0, 0, 0};               // anisotropic ω
+    Vec3 omega_{0, 0, 0};               // anisotropic and oriented ω
+    std::uint64_t oriented_below_ = 0;  // oriented kind: an impulse is oriented if its draw is below this
     Vec3 plane_e1_{1, 0, 0}, plane_e2_{0, 1, 0};  // hybrid: orthonormal basis of the plane of ω
 };
 

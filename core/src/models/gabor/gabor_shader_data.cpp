@@ -16,6 +16,10 @@ GaborShaderData gabor_shader_data(const TextureDescription& description)
         throw Error("model '" + description.model + "' has no gabor shader data (only the gabor model)");
     validate(description, "texture");
     const GaborParameters& gabor = description.parameters.get<GaborParameters>();
+    // The shader (osl/stochtex_gabor.h) draws isotropic, anisotropic and hybrid frequencies only.
+    if (gabor.kind == GaborKind::oriented)
+        throw Error("gabor kind 'oriented' (per-octave orientation) has no shader export yet: analyse with "
+                    "--gabor-kind isotropic or anisotropic for OSL");
     GaborShaderData data;
     data.pixels_per_unit = description.pixels_per_unit;
     data.kind = int(gabor.kind);

@@ -141,8 +141,27 @@ GaborSphereTable gabor_sphere_table()
     return {SphereGaussianTable::size, table.step(), std::vector<float>(table.values().begin(), table.values().end())};
 }
 
+namespace {
+
+/// An oriented noise's second-order statistics are those of its two populations of impulses,
+/// mixed by their shares: random phases leave no cross terms, and both have unit variance.
+template <class Statistic>
+double mixed(const GaborNoiseParameters& noise, const Statistic& statistic)
+{
+    GaborNoiseParameters part = noise;
+    part.kind = GaborKind::anisotropic;
+    const double oriented = noise.oriented_fraction > 0 ? statistic(part) : 0.0;
+    part.kind = GaborKind::isotropic;
+    const double isotropic = noise.oriented_fraction < 1 ? statistic(part) : 0.0;
+    return noise.oriented_fraction * oriented + (1 - noise.oriented_fraction) * isotropic;
+}
+
+}  // namespace
+
 double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
 {
+    if (noise.kind == GaborKind::oriented)
+        return mixed(noise, [&](const GaborNoiseParameters& part) { return gabor_correlation(part, tau); });
     const double a = noise.bandwidth, f = noise.frequency;
     const double envelope = std::exp(-M_PI * a * a * dot3(tau, tau) / 2);
     switch (noise.kind) {
@@ -152,7 +171,8 @@ double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
         const double in_plane = std::sqrt(std::max(0.0, dot3(tau, tau) - along * along));
         return envelope * std::cyl_bessel_j(0.0, 2 * M_PI * f * in_plane);
     }
-    case GaborKind::isotropic: break;
+    case GaborKind::isotropic:
+    case GaborKind::oriented: break;
     }
     const double x = 2 * M_PI * f * std::sqrt(dot3(tau, tau));
     return envelope * (x < 1e-8 ? 1.0 : std::sin(x) / x);
@@ -160,6 +180,8 @@ double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
 
 double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho)
 {
+    if (noise.kind == GaborKind::oriented)
+        return mixed(noise, [&](const GaborNoiseParameters& part) { return gabor_slice_radial_psd(part, rho); });
     const double a = noise.bandwidth, f = noise.frequency;
     const Vec3& d = noise.direction;
     switch (noise.kind) {
@@ -176,7 +198,8 @@ double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho)
         }
         return sum / steps;
     }
-    case GaborKind::isotropic: break;
+    case GaborKind::isotropic:
+    case GaborKind::oriented: break;
     }
     // |ω^s| = F·√(1 − z²), z = cos(colatitude) uniform; the ring depends on |ω^s|² only, so the
     // integrand is smooth in z; panels resolve narrow rings (small bandwidth).
@@ -191,6 +214,8 @@ double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho)
 double gabor_retained_variance(const GaborNoiseParameters& noise, const TangentFrame& frame, const GaborFilter& filter)
 {
     if (filter.identity) return 1;
+    if (noise.kind == GaborKind::oriented)
+        return mixed(noise, [&](const GaborNoiseParameters& part) { return gabor_retained_variance(part, frame, filter); });
     const Symmetric2& damping = filter.damping;  // the kernel's amplitude is exp(−ω^sᵀDω^s): variance exp(−2ω^sᵀDω^s)
     const double f = noise.frequency;
     switch (noise.kind) {
@@ -209,7 +234,8 @@ double gabor_retained_variance(const GaborNoiseParameters& noise, const TangentF
         const double c0 = 0.5 * (m11 + m22), r = std::hypot(0.5 * (m11 - m22), m12);
         return filter.amplitude * std::exp(-(c0 - r)) * scaled_bessel_i0(r);
     }
-    case GaborKind::isotropic: break;
+    case GaborKind::isotropic:
+    case GaborKind::oriented: break;
     }
     // ω^s = F(u_t, u_b) with u uniform on the sphere: only the eigenvalues of 2F²D matter.
     const double scale = 2 * f * f;

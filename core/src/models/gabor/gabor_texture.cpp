@@ -58,6 +58,11 @@ GaborNoiseParameters gabor_octave(const TextureDescription& description, std::si
     noise.frequency = gabor.frequencies[k];
     noise.bandwidth = gabor.bandwidth * gabor.frequencies[k];
     noise.direction = gabor.direction;
+    if (gabor.kind == GaborKind::oriented) {
+        const double theta = gabor.orientations[k] * M_PI / 180;
+        noise.direction = {std::cos(theta), std::sin(theta), 0};
+        noise.oriented_fraction = gabor.oriented_fractions[k];
+    }
     noise.impulses_per_kernel = gabor.impulses_per_kernel;
     noise.seed = mix_seed(description.seed, k, 0x6ab0);
     // rgb-shared: one noise for the three channels (perfectly correlated).
