@@ -60,6 +60,9 @@ LrpParameters fit_lrp(const std::array<std::vector<float>, 3>& channels, int wid
         structure.cosines = std::max(1, int(std::lround(options.structure_fraction * options.cosines)));
         structure.max_terms = std::max(options.max_structure_terms, structure.cosines);
         structure.random_placement = options.random_placement;
+        // Placement cells of half a crop hold wavelengths up to T/2: the lowest octave (|k| < 2)
+        // goes to the random-phase strata (their own stratum with options.resolve).
+        if (options.random_placement && options.resolve > 0) structure.min_radius_bins = 2;
         out.structure = fit_lrp_structure(channels, width, height, size, basis, structure);
         out.structure->structure.turbulence =
             options.turbulence >= 0 ? options.turbulence : lrp_automatic_turbulence(out.structure->region, sum);
@@ -72,13 +75,14 @@ LrpParameters fit_lrp(const std::array<std::vector<float>, 3>& channels, int wid
     sampling.cosines = random_cosines;
     sampling.representatives = options.representatives;
     sampling.coverage = options.coverage;
+    sampling.resolve = options.resolve;
     sampling.power_weighted = options.power_weighted;
     sampling.seed = options.seed;
     StratifiedSpectrum strata = stratify_spectrum(
         sum, {&out.channel_spectra[0], &out.channel_spectra[1], &out.channel_spectra[2]}, excluded, sampling);
     if (options.leakage_correction)
         correct_stratum_leakage(strata.strata, strata.label,
-                                {&out.channel_spectra[0], &out.channel_spectra[1], &out.channel_spectra[2]});
+                                {&out.channel_spectra[0], &out.channel_spectra[1], &out.channel_spectra[2]}, options.match_rings);
     parameters.strata = std::move(strata.strata);
     out.stratum_of_bin = std::move(strata.label);
     if (parameters.strata.empty() && !parameters.structure) throw Error("lrp: the photo has no variance to model");

@@ -31,6 +31,7 @@ struct LrpFitOptions {
     double structure_fraction = 0.1;  ///< r: energy share of the fixed-phase region (0: none)
     int representatives = 4;          ///< stored bins per sub-stratum
     double coverage = 0.125;          ///< Δ_S = T √(coverage J_S / |S_half|)
+    double resolve = 0.6;             ///< the lowest octave's own stratum, Δ = resolve / f (LrpSamplingOptions::resolve)
     bool power_weighted = true;       ///< sub-strata of equal energy rather than equal area
     bool random_placement = true;
     double turbulence = -1;           ///< displacement σ, exemplar pixels; < 0: automatic
@@ -39,6 +40,8 @@ struct LrpFitOptions {
     /// Solve the strata's variances against their measured leakage (lrp_leakage.h); false: each
     /// stratum's σ² is its own energy, as in the paper.
     bool leakage_correction = true;
+    /// The correction also matches each radial ring's energy (lrp_leakage.h); false: strata only.
+    bool match_rings = true;
     std::uint64_t seed = 1;
 };
 

@@ -9,7 +9,8 @@
 //     energy in total are left out: an analytic spectrum's numerically-zero tails would
 //     otherwise make the last stratum cover the whole plane.
 //   * Budget: J_S = J / L, the remainder to the most energetic strata; J_S ≤ the eroded
-//     stratum's bin count (a stratum of three peaks gets three cosines).
+//     stratum's bin count (a stratum of three peaks gets three cosines). By example, the lowest
+//     octave first gets a stratum of its own (`resolve`), one cosine per bin.
 //   * Δ_S = T √(coverage · J_S / |S_half|): the paper's T √J_S / √(2|S|) is coverage = ¼ with
 //     |S| counted on the full spectrum. By example, ⅛: smaller windows, more of them — with ¼
 //     the mid strata of photos show their few plane waves (a fine hatching), for 0–0.3 dB of
@@ -42,6 +43,12 @@ struct LrpSamplingOptions {
     int representatives = 4;  ///< stored bins per sub-stratum
     double coverage = 0.25;   ///< the paper's; analysis by example uses ⅛ (LrpFitOptions)
     double spacing = 0;       ///< > 0: every stratum's Δ (exemplar pixels), instead of the coverage rule
+    /// > 0: the lowest octave (bins with |k| < 2, at most J/2 of them) is a stratum of its own,
+    /// one cosine per bin, with Δ = resolve / f, f its energy-weighted 10 % quantile of |f| (cycles
+    /// per pixel): the window's 2D spread 0.41/Δ stays below f (⅔ f at the fit's 0.6) instead of
+    /// carrying the longest wavelengths' energy upward. The other strata share the remaining cosines. 0 (analytic
+    /// spectra): no such stratum (docs/models/lrp.md, "Low frequencies and the top octave").
+    double resolve = 0;
     /// k-means weighted by the power of each bin: sub-strata of similar energy rather than area.
     bool power_weighted = true;
     std::uint64_t seed = 1;   ///< k-means seeding

@@ -204,6 +204,7 @@ LrpStructureFit fit_lrp_structure(const std::array<std::vector<float>, 3>& chann
     double held = 0;
     for (const HalfBin& bin : bins) {
         if (!(held < options.energy_fraction * total)) break;
+        if (std::hypot(bin.kx, bin.ky) < options.min_radius_bins) continue;
         fit.region[layout.index(bin.kx, bin.ky)] = fit.region[layout.index(mirror_bin(bin.kx, size), mirror_bin(bin.ky, size))] = 1;
         held += bin.energy;
     }

@@ -32,6 +32,10 @@ struct LrpStructureFitOptions {
     int fit_extent = 1;             ///< E = fit_extent · B
     bool random_placement = true;
     double turbulence = 0;          ///< exemplar pixels
+    /// Bins nearer DC than this stay out of R. Random placement shifts the structure per cell of
+    /// half a crop, which decorrelates every wavelength longer than a cell: R's lowest octave came
+    /// out 5–17 dB weak (docs/models/lrp.md); the random-phase strata hold it instead.
+    double min_radius_bins = 0;
 };
 
 struct LrpStructureFit {
