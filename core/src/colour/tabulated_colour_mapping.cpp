@@ -43,20 +43,8 @@ void TabulatedColourMapping::build() const
 double TabulatedColourMapping::map_channel(int c, double z, double dropped_sigma) const
 {
     if (!exact_.has_map(c) || dropped_sigma < 1e-4 || !(dropped_sigma < sigma_max)) return exact_.map_channel(c, z, dropped_sigma);
-    if (!ready_.load(std::memory_order_acquire)) {
-        std::call_once(built_, [this] { build(); });
-        ready_.store(true, std::memory_order_release);
-    }
-    const Table& table = tables_[c];
-    const double s = dropped_sigma * (1 / step);
-    const int row = std::min(int(s), table.rows - 2);
-    const double fs = s - row;
-    const double q = std::clamp((z - table.z0) * (1 / step), 0.0, double(table.columns - 1));
-    const int column = std::min(int(q), table.columns - 2);
-    const double fq = q - column;
-    const float* low = &table.values[std::size_t(row) * table.columns + column];
-    const float* high = low + table.columns;
-    return (low[0] * (1 - fq) + low[1] * fq) * (1 - fs) + (high[0] * (1 - fq) + high[1] * fq) * fs;
+    ensure_built();
+    return interpolate(tables_[c], z, dropped_sigma);
 }
 
 Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const
@@ -65,6 +53,21 @@ Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::ar
     for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
     exact_.condition(z[0], dropped_sigma[0], y);
     return exact_.combine(y);
+}
+
+void TabulatedColourMapping::to_rgb(const std::array<const double*, 3>& z, const std::array<const double*, 3>& dropped_sigma,
+                                    std::size_t count, const RgbOutput& out, std::size_t first) const
+{
+    ensure_built();
+    for (std::size_t i = 0; i < count; ++i) {
+        std::array<double, 3> y;
+        for (int c = 0; c < 3; ++c) {
+            const double zc = z[c][i], sc = dropped_sigma[c][i];
+            y[c] = !exact_.has_map(c) || sc < 1e-4 || !(sc < sigma_max) ? exact_.map_channel(c, zc, sc) : interpolate(tables_[c], zc, sc);
+        }
+        exact_.condition(z[0][i], dropped_sigma[0][i], y);
+        out.set(first + i, exact_.combine(y));
+    }
 }
 
 }  // namespace stochtex
