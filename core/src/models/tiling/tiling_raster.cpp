@@ -135,7 +135,6 @@ const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspac
 template <int Channels>
 void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& ws, float* out) const
 {
-    using P = Pairs<Channels>;
     const TapPlan& taps = plan.taps;
     const int n_taps = taps.na * taps.nb;
     // Positions much farther apart than the triangles (a strongly minified row) would make the
@@ -204,7 +203,6 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
     sums.taps = n_taps, sums.channels = Channels;
     sums.offsets = ws.offsets_.data(), sums.fractions = ws.fractions_.data(), sums.lanes = lanes;
     sums.ratio = plan.ratio.data(), sums.scatter = plan.scatter.data(), sums.weight = plan.weight, sums.inverse_total = plan.inverse_total;
-    sums.pairs = P::count, sums.first = P::first, sums.second = P::second;
     tiling_raster::accumulate_taps(sums, count, out);
 }
 

@@ -84,10 +84,7 @@ struct TapSums {
     std::size_t lanes;
     const float* ratio;
     const float* scatter;
-    float weight, inverse_total;
-    int pairs;
-    const int* first;  ///< moment lane channels + p is moment (first[p], second[p])
-    const int* second;
+    float weight, inverse_total;  ///< moment lane channels + p is moment packed_pairs(channels) p
 };
 void accumulate_taps(const TapSums& sums, std::size_t count, float* out);
 
