@@ -1,6 +1,7 @@
 #include "colour/tabulated_colour_mapping.h"
 
 #include "colour/gaussian.h"
+#include "colour/tabulated_colour_mapping_row.h"
 
 #include <tbb/parallel_for.h>
 
@@ -59,14 +60,26 @@ void TabulatedColourMapping::to_rgb(const std::array<const double*, 3>& z, const
                                     std::size_t count, const RgbOutput& out, std::size_t first) const
 {
     ensure_built();
-    for (std::size_t i = 0; i < count; ++i) {
-        std::array<double, 3> y;
+    constexpr std::size_t block = 64;  // items per pass: the mapped values stay on the stack
+    double y[3][block];
+    for (std::size_t start = 0; start < count; start += block) {
+        const std::size_t n = std::min(block, count - start);
         for (int c = 0; c < 3; ++c) {
-            const double zc = z[c][i], sc = dropped_sigma[c][i];
-            y[c] = !exact_.has_map(c) || sc < 1e-4 || !(sc < sigma_max) ? exact_.map_channel(c, zc, sc) : interpolate(tables_[c], zc, sc);
+            const double* zc = z[c] + start;
+            const double* sc = dropped_sigma[c] + start;
+            if (exact_.has_map(c)) {
+                const Table& t = tables_[c];
+                tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
+            }
+            // map_channel()'s cases outside the table, item by item.
+            for (std::size_t i = 0; i < n; ++i)
+                if (!exact_.has_map(c) || sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
         }
-        exact_.condition(z[0][i], dropped_sigma[0][i], y);
-        out.set(first + i, exact_.combine(y));
+        for (std::size_t i = 0; i < n; ++i) {
+            std::array<double, 3> yi{y[0][i], y[1][i], y[2][i]};
+            exact_.condition(z[0][start + i], dropped_sigma[0][start + i], yi);
+            out.set(first + start + i, exact_.combine(yi));
+        }
     }
 }
 
