@@ -8,6 +8,8 @@
 #include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
+#include <cstdint>
+
 #include "models/tiling/tiling_raster_kernels.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -99,6 +101,14 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * s.lanes; };
     auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 5 + std::size_t(field)) * s.lanes; };
     const auto level_t = hn::Set(df, s.t);
+    // A record in one vector (AVX2, AVX-512): the mixture runs on vectors; else on scalars.
+    constexpr bool one_vector = !HWY_HAVE_SCALABLE && HWY_MAX_BYTES >= 32;
+    const auto mean_lanes = hn::FirstN(df, Channels), used_lanes = hn::FirstN(df, Channels + P::count);
+    const auto tap_weight = hn::Set(df, s.weight), inverse_total = hn::Set(df, s.inverse_total);
+    std::int32_t first_index[hn::MaxLanes(decltype(df)())] = {}, second_index[hn::MaxLanes(decltype(df)())] = {};
+    for (int p = 0; p < P::count && Channels + p < int(hn::MaxLanes(df)); ++p)
+        first_index[Channels + p] = P::first[p], second_index[Channels + p] = P::second[p];
+    const auto first_lanes = hn::SetTableIndices(df, first_index), second_lanes = hn::SetTableIndices(df, second_index);
     // The records a position reads are spread over three tiles and two levels, beyond what the
     // hardware prefetchers follow: the loads waited on memory for ~60 % of this loop. Their
     // addresses are known a chunk ahead, so the lines of the position `ahead` of this one are
@@ -119,6 +129,7 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     for (std::size_t l = 0; l < count; ++l) {
         if (l + ahead < count) prefetch(l + ahead);
         float result[record] = {};
+        auto mixed = hn::Zero(df);  // one_vector's result
         for (int k = 0; k < s.taps; ++k) {
             hn::Vec<decltype(df)> sum[record] = {};
             for (int h = 0; h < parts; ++h) sum[h] = hn::Zero(df);
@@ -142,6 +153,21 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                     sum[h] = hn::Add(sum[h], hn::Mul(weights, sample));
                 }
             }
+            if constexpr (one_vector) {
+                // The mixture below, lane-wise on the whole record: the mean lanes take
+                // result + ratio · delta, moment lane C + p takes result + (weight · m + scatter ·
+                // delta[first p] · delta[second p]), the deltas brought to it by a lane lookup.
+                if (s.taps == 1) {
+                    mixed = sum[0];
+                    break;
+                }
+                const auto delta = hn::Sub(sum[0], mixed);
+                const auto products = hn::Mul(hn::TableLookupLanes(delta, first_lanes), hn::TableLookupLanes(delta, second_lanes));
+                const auto next_means = hn::Add(mixed, hn::Mul(hn::Set(df, s.ratio[k]), delta));
+                const auto next_moments = hn::Add(mixed, hn::Add(hn::Mul(tap_weight, sum[0]), hn::Mul(hn::Set(df, s.scatter[k]), products)));
+                mixed = hn::IfThenElse(mean_lanes, next_means, next_moments);
+                continue;
+            }
             float m[record];
             for (int h = 0; h < parts; ++h) hn::StoreU(sum[h], df, m + h * step);
             if (s.taps == 1) {
@@ -157,6 +183,12 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                 result[Channels + p] += s.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
         }
         float* o = out + l * record;
+        if constexpr (one_vector) {
+            // Lanes past the kept moments stay 0, as in the scalar form.
+            const auto scaled = s.taps == 1 ? mixed : hn::IfThenElse(mean_lanes, mixed, hn::Mul(mixed, inverse_total));
+            hn::StoreU(hn::IfThenElseZero(used_lanes, scaled), df, o);
+            continue;
+        }
         for (int r = 0; r < record; ++r) o[r] = s.taps == 1 || r < Channels ? result[r] : result[r] * s.inverse_total;
     }
 }
