@@ -1,6 +1,7 @@
 // Highway compiles this file once per instruction set (foreach_target.h); line_sum picks the
 // best one the CPU has. Lane-wise Mul, Add, Sub, Min, Max, Floor and conversions only (never
-// MulAdd): the same rounding on every target (colour_map_kernels.h).
+// MulAdd), and GCC vector arithmetic (lane-wise too) in the second pass: the same rounding on
+// every target (colour_map_kernels.h).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "models/tiling/colour_map_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::colour_map_kernels::HWY_NAMESPACE {
@@ -27,12 +29,10 @@ void LineSum(const LineNodes& line, float* rgb)
     // never summed), their colours stored planar.
     constexpr std::size_t padded = max_nodes + hn::MaxLanes(decltype(dd)());
     double t[padded];
-    float colour[3][padded];
     const std::size_t count = std::size_t(line.count), rounded = (count + lanes - 1) / lanes * lanes;
     for (std::size_t k = 0; k < rounded; ++k) t[k] = line.node[std::min(k, count - 1)];
     const auto zero = hn::Zero(dd), one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5);
     const auto a = hn::Set(dd, line.a), b = hn::Set(dd, line.b), step_a = hn::Set(dd, line.step_a), step_b = hn::Set(dd, line.step_b);
-    const auto fone = hn::Set(df, 1.0f);
     // Pass 1: every node's texel offsets and fractions in each table, and a prefetch of the two
     // rows each reads — the nodes walk ~one new map row each through a table of up to 0.8 MB,
     // so their loads are requested together rather than as the nodes come.
@@ -71,29 +71,29 @@ void LineSum(const LineNodes& line, float* rgb)
             hwy::Prefetch(line.tables[m].rgb + offsets[m][0][k]);
             hwy::Prefetch(line.tables[m].rgb + offsets[m][1][k]);
         }
-    // Pass 2: the nodes' colours (Packed::fetch's arithmetic), then their sum in node order.
-    for (std::size_t k = 0; k < rounded; k += lanes) {
-        hn::Vec<decltype(df)> out[3] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
-        for (int m = 0; m < tables; ++m) {
-            const auto fx = hn::LoadU(df, fractions[m][0] + k), fy = hn::LoadU(df, fractions[m][1] + k);
-            const auto hx = hn::Sub(fone, fx), hy = hn::Sub(fone, fy);
-            const auto i00 = hn::LoadU(di, offsets[m][0] + k), i10 = hn::LoadU(di, offsets[m][1] + k);
-            const auto step = hn::LoadU(di, steps[m] + k);
-            const auto i01 = hn::Add(i00, step), i11 = hn::Add(i10, step);
-            const auto weight = hn::Set(df, line.tables[m].weight);
-            for (int c = 0; c < 3; ++c) {
-                const float* base = line.tables[m].rgb + c;
-                const auto low = hn::Add(hn::Mul(hx, hn::GatherIndex(df, base, i00)), hn::Mul(fx, hn::GatherIndex(df, base, i01)));
-                const auto high = hn::Add(hn::Mul(hx, hn::GatherIndex(df, base, i10)), hn::Mul(fx, hn::GatherIndex(df, base, i11)));
-                out[c] = hn::Add(out[c], hn::Mul(weight, hn::Add(hn::Mul(hy, low), hn::Mul(fy, high))));
-            }
-        }
-        for (int c = 0; c < 3; ++c) hn::StoreU(out[c], df, colour[c] + k);
-    }
-    float sum[3] = {0, 0, 0};
+    // Pass 2: node by node, Packed::fetch's arithmetic on each texel's RGB as one vector of four
+    // floats (one load, where a gather per channel would take three), summed in node order.
+    typedef float Colour4 __attribute__((vector_size(4 * sizeof(float))));
+    auto load = [](const float* p) {
+        Colour4 c;
+        std::memcpy(&c, p, sizeof c);
+        return c;
+    };
+    auto splat = [](float v) { return Colour4{v, v, v, v}; };
+    Colour4 sum{};
     for (std::size_t k = 0; k < count; ++k) {
-        const float w = float(line.weight[k]);
-        for (int c = 0; c < 3; ++c) sum[c] += w * colour[c][k];
+        Colour4 out{};
+        for (int m = 0; m < tables; ++m) {
+            const float fx = fractions[m][0][k], fy = fractions[m][1][k];
+            const float* r0 = line.tables[m].rgb + offsets[m][0][k];
+            const float* r1 = line.tables[m].rgb + offsets[m][1][k];
+            const std::int32_t step = steps[m][k];
+            const Colour4 gx = splat(fx), hx = splat(1 - fx);
+            const Colour4 low = hx * load(r0) + gx * load(r0 + step);
+            const Colour4 high = hx * load(r1) + gx * load(r1 + step);
+            out += splat(line.tables[m].weight) * (splat(1 - fy) * low + splat(fy) * high);
+        }
+        sum += splat(float(line.weight[k])) * out;
     }
     for (int c = 0; c < 3; ++c) rgb[c] = sum[c];
 }

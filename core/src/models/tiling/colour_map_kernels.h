@@ -1,11 +1,13 @@
-// The covariance lookup's line quadrature (ColourMapFilter::lookup), vectorised across the
-// nodes with Highway (colour_map_kernels.cpp, dispatched to the CPU's best instruction set).
+// The covariance lookup's line quadrature (ColourMapFilter::lookup) with Highway
+// (colour_map_kernels.cpp, dispatched to the CPU's best instruction set): first every node's
+// texel offsets and fractions in each table, vectorised across the nodes, and a prefetch of all
+// the rows they read (a line crosses ~one map row per node: requested together, the loads
+// overlap instead of waiting one by one); then node by node the bilinear fetches on RGB vectors
+// of four floats (one load per texel; a gather per channel measured slower), summed in node order.
 //
-// Every node's colour is computed lane by lane with the IEEE operations, in the order, of
-// ColourMapFilter::Packed::fetch (no fused multiply-add: the core builds with
-// -ffp-contract=off); the weighted sum over the nodes is then taken in node order, as lookup()
-// did. So the values are the scalar code's bits on every target, and a node's colour does not
-// depend on the lane it falls in.
+// Both passes perform the IEEE operations of ColourMapFilter::Packed::fetch and of the sum, in
+// their order (no fused multiply-add: the core builds with -ffp-contract=off), so the values are
+// the scalar code's bits on every target (RasterPaths.TilingGivesTheSameBitsOnEveryInstructionSet).
 #pragma once
 
 #include <cstddef>
