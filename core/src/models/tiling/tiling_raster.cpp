@@ -11,25 +11,6 @@ namespace {
 
 constexpr int record = PackedMomentPyramid::record;
 
-/// packed_pairs() at compile time.
-template <int Channels>
-struct Pairs;
-template <>
-struct Pairs<1> {
-    static constexpr int count = 1;
-    static constexpr int first[1] = {0}, second[1] = {0};
-};
-template <>
-struct Pairs<2> {
-    static constexpr int count = 3;
-    static constexpr int first[3] = {0, 0, 1}, second[3] = {0, 1, 1};
-};
-template <>
-struct Pairs<3> {  // the variances only: what the colour output reads
-    static constexpr int count = 3;
-    static constexpr int first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
-};
-
 /// Pixels per pass of the address stage (its buffers hold taps × 3 tiles × this many lanes).
 constexpr std::size_t chunk = 64;
 
@@ -43,9 +24,9 @@ PackedPairs packed_pairs(int channels)
         for (int k = 0; k < pairs.count; ++k) p.first[std::size_t(k)] = pairs.first[k], p.second[std::size_t(k)] = pairs.second[k];
     };
     switch (channels) {
-    case 1: fill(Pairs<1>{}); break;
-    case 2: fill(Pairs<2>{}); break;
-    default: fill(Pairs<3>{}); break;
+    case 1: fill(tiling_raster::RecordPairs<1>{}); break;
+    case 2: fill(tiling_raster::RecordPairs<2>{}); break;
+    default: fill(tiling_raster::RecordPairs<3>{}); break;
     }
     return p;
 }

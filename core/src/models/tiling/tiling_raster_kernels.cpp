@@ -71,22 +71,6 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
     }
 }
 
-/// The moment lanes' channel pairs of TilingRaster's packed records (packed_pairs), as constants.
-template <int Channels>
-struct RecordPairs;
-template <>
-struct RecordPairs<1> {
-    static constexpr int count = 1, first[1] = {0}, second[1] = {0};
-};
-template <>
-struct RecordPairs<2> {
-    static constexpr int count = 3, first[3] = {0, 0, 1}, second[3] = {0, 1, 1};
-};
-template <>
-struct RecordPairs<3> {
-    static constexpr int count = 3, first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
-};
-
 /// AccumulateTaps for a channel count and one or two levels known at compile time, so the
 /// mixture's loops unroll into registers (the same operations as with them at run time).
 template <int Channels, bool Upper>
@@ -109,10 +93,10 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     for (int p = 0; p < P::count && Channels + p < int(hn::MaxLanes(df)); ++p)
         first_index[Channels + p] = P::first[p], second_index[Channels + p] = P::second[p];
     const auto first_lanes = hn::SetTableIndices(df, first_index), second_lanes = hn::SetTableIndices(df, second_index);
-    // The records a position reads are spread over three tiles and two levels, beyond what the
-    // hardware prefetchers follow: the loads waited on memory for ~60 % of this loop. Their
-    // addresses are known a chunk ahead, so the lines of the position `ahead` of this one are
-    // requested now (a hint: no value changes).
+    // The records a position reads are spread over three tiles (and two levels), more streams
+    // than the hardware prefetchers follow; in the profile the hottest instruction was the one
+    // waiting on a record load. Their addresses are known a chunk ahead, so the lines of the
+    // position `ahead` of this one are requested now (a hint: no value changes).
     constexpr std::size_t ahead = 3;
     auto prefetch = [&](std::size_t l) {
         for (int k = 0; k < s.taps; ++k)
