@@ -20,8 +20,10 @@
 #include <stochtex/models/tiling.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -134,6 +136,45 @@ TEST(RasterPaths, RendersAreBitIdenticalForAnyThreadCount)
         const Image solid = render(*texture, settings);
         settings.threads = 1;
         EXPECT_EQ(solid.pixels, render(*texture, settings).pixels) << c.name << " solid";
+    }
+}
+
+TEST(RasterPaths, TilingGivesTheSameBitsOnEveryInstructionSet)
+{
+    // The tiling kernels (address stage, lookups and mixture, the tabulated colour maps' row
+    // lookup, the colour-map line quadrature) use lane-wise operations only: every Highway target
+    // the CPU runs must give the default target's bits, for a raster (eval_region) and eval().
+    for (const Case& c : cases()) {
+        if (c.description.model != "tiling") continue;
+        const auto texture = make_texture(c.description);
+        const double ppu = c.description.pixels_per_unit;
+        auto evaluate = [&] {
+            std::vector<float> all;
+            for (const Footprint2D& f : footprints_px()) {
+                RasterRegion region;
+                region.origin_u = -0.83, region.origin_v = 0.29;
+                region.du = std::max(f.dudx, 0.9) / ppu, region.dv = std::max(f.dvdy, 1.1) / ppu;
+                region.width = 29, region.height = 3;
+                region.footprint = f.scaled(1 / ppu);
+                std::vector<float> raster(std::size_t(region.width) * region.height * 3);
+                texture->eval_region(region, raster.data());
+                all.insert(all.end(), raster.begin(), raster.end());
+                const Rgb point = texture->eval({region.u(5), region.v(1)}, region.footprint);
+                all.insert(all.end(), point.begin(), point.end());
+            }
+            return all;
+        };
+        const std::vector<float> reference = evaluate();
+        std::string targets;
+        for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+            hwy::SetSupportedTargetsForTest(target);
+            const std::vector<float> values = evaluate();
+            ASSERT_EQ(values.size(), reference.size());
+            for (std::size_t i = 0; i < values.size(); ++i) ASSERT_EQ(values[i], reference[i]) << c.name << ", " << hwy::TargetName(target) << ", value " << i;
+            targets += std::string(" ") + hwy::TargetName(target);
+        }
+        hwy::SetSupportedTargetsForTest(0);
+        std::printf("%s: identical values on:%s\n", c.name.c_str(), targets.c_str());
     }
 }
 

@@ -1,6 +1,7 @@
 #include "colour/tabulated_colour_mapping.h"
 
 #include "colour/gaussian.h"
+#include "colour/tabulated_colour_mapping_row.h"
 
 #include <tbb/parallel_for.h>
 
@@ -43,20 +44,8 @@ void TabulatedColourMapping::build() const
 double TabulatedColourMapping::map_channel(int c, double z, double dropped_sigma) const
 {
     if (!exact_.has_map(c) || dropped_sigma < 1e-4 || !(dropped_sigma < sigma_max)) return exact_.map_channel(c, z, dropped_sigma);
-    if (!ready_.load(std::memory_order_acquire)) {
-        std::call_once(built_, [this] { build(); });
-        ready_.store(true, std::memory_order_release);
-    }
-    const Table& table = tables_[c];
-    const double s = dropped_sigma * (1 / step);
-    const int row = std::min(int(s), table.rows - 2);
-    const double fs = s - row;
-    const double q = std::clamp((z - table.z0) * (1 / step), 0.0, double(table.columns - 1));
-    const int column = std::min(int(q), table.columns - 2);
-    const double fq = q - column;
-    const float* low = &table.values[std::size_t(row) * table.columns + column];
-    const float* high = low + table.columns;
-    return (low[0] * (1 - fq) + low[1] * fq) * (1 - fs) + (high[0] * (1 - fq) + high[1] * fq) * fs;
+    ensure_built();
+    return interpolate(tables_[c], z, dropped_sigma);
 }
 
 Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const
@@ -65,6 +54,33 @@ Rgb TabulatedColourMapping::to_rgb(const std::array<double, 3>& z, const std::ar
     for (int c = 0; c < 3; ++c) y[c] = map_channel(c, z[c], dropped_sigma[c]);
     exact_.condition(z[0], dropped_sigma[0], y);
     return exact_.combine(y);
+}
+
+void TabulatedColourMapping::to_rgb(const std::array<const double*, 3>& z, const std::array<const double*, 3>& dropped_sigma,
+                                    std::size_t count, const RgbOutput& out, std::size_t first) const
+{
+    ensure_built();
+    constexpr std::size_t block = 64;  // items per pass: the mapped values stay on the stack
+    double y[3][block];
+    for (std::size_t start = 0; start < count; start += block) {
+        const std::size_t n = std::min(block, count - start);
+        for (int c = 0; c < 3; ++c) {
+            const double* zc = z[c] + start;
+            const double* sc = dropped_sigma[c] + start;
+            if (exact_.has_map(c)) {
+                const Table& t = tables_[c];
+                tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
+            }
+            // map_channel()'s cases outside the table, item by item.
+            for (std::size_t i = 0; i < n; ++i)
+                if (!exact_.has_map(c) || sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            std::array<double, 3> yi{y[0][i], y[1][i], y[2][i]};
+            exact_.condition(z[0][start + i], dropped_sigma[0][start + i], yi);
+            out.set(first + start + i, exact_.combine(yi));
+        }
+    }
 }
 
 }  // namespace stochtex

@@ -16,6 +16,7 @@
 
 #include "colour/colour_mapping.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <memory>
@@ -33,6 +34,11 @@ public:
 
     /// ColourMapping::to_rgb with the tabulated channel maps.
     Rgb to_rgb(const std::array<double, 3>& z, const std::array<double, 3>& dropped_sigma) const;
+    /// to_rgb() of `count` items (item i: z[c][i], dropped_sigma[c][i]) into out items first + i,
+    /// bit-identical to to_rgb() item by item: the table is resolved once per row, not per value
+    /// (the colour step of a tiling raster row).
+    void to_rgb(const std::array<const double*, 3>& z, const std::array<const double*, 3>& dropped_sigma, std::size_t count,
+                const RgbOutput& out, std::size_t first) const;
     /// Channel c's tabulated value (map_channel() outside the table).
     double map_channel(int c, double z, double dropped_sigma) const;
     const ColourMapping& exact() const { return exact_; }
@@ -44,6 +50,27 @@ private:
         std::vector<float> values;  // [row · columns + column]: F(z0 + column·step, row·step)
     };
     void build() const;
+    /// Builds the tables once (before the first lookup that reads them).
+    void ensure_built() const
+    {
+        if (!ready_.load(std::memory_order_acquire)) {
+            std::call_once(built_, [this] { build(); });
+            ready_.store(true, std::memory_order_release);
+        }
+    }
+    /// map_channel()'s table lookup (dropped_sigma in [1e-4, σ_max)).
+    static double interpolate(const Table& table, double z, double dropped_sigma)
+    {
+        const double s = dropped_sigma * (1 / step);
+        const int row = std::min(int(s), table.rows - 2);
+        const double fs = s - row;
+        const double q = std::clamp((z - table.z0) * (1 / step), 0.0, double(table.columns - 1));
+        const int column = std::min(int(q), table.columns - 2);
+        const double fq = q - column;
+        const float* low = &table.values[std::size_t(row) * table.columns + column];
+        const float* high = low + table.columns;
+        return (low[0] * (1 - fq) + low[1] * fq) * (1 - fs) + (high[0] * (1 - fq) + high[1] * fq) * fs;
+    }
 
     ColourMapping exact_;
     std::array<double, 2> knot_range_[3];

@@ -1,5 +1,7 @@
 #include "models/tiling/colour_map_filter.h"
 
+#include "models/tiling/colour_map_kernels.h"
+
 #include <stochtex/error.h>
 
 #include <algorithm>
@@ -287,6 +289,16 @@ public:
         return out;
     }
 
+    /// The tables for the vectorised line quadrature (colour_map_kernels.h).
+    int kernel_tables(colour_map_kernels::Table* out) const
+    {
+        for (int k = 0; k < count_; ++k) {
+            const Table& m = tables_[std::size_t(k)];
+            out[k] = {m.rgb, m.stride, m.width, m.height, m.last_x0, m.last_y0, m.weight[0]};
+        }
+        return count_;
+    }
+
 private:
     struct Table {
         const float* rgb;
@@ -313,13 +325,16 @@ Rgb ColourMapFilter::lookup(double mean_a, double mean_b, const PairCovariance& 
         const Colour4 c = levels.fetch(l.a, l.b);
         return {c[0], c[1], c[2]};
     }
+    // Σ_k float(w_k) · fetch(a + t_k α, b + t_k β), the nodes' fetches vectorised across the
+    // nodes and summed in node order (colour_map_kernels.h: Packed::fetch's operations).
     const LineQuadrature& rule = line_quadrature(l.count);
-    Colour4 sum{};
-    const double step_a = l.alpha / size_, step_b = l.beta / size_;
-    for (int k = 0; k < l.count; ++k) {
-        const double t = rule.node[k];
-        sum += splat4(float(rule.weight[k])) * levels.fetch(std::clamp(l.a + t * step_a, 0.0, 1.0), std::clamp(l.b + t * step_b, 0.0, 1.0));
-    }
+    colour_map_kernels::Table tables[4];
+    colour_map_kernels::LineNodes nodes{};
+    nodes.tables = tables, nodes.table_count = levels.kernel_tables(tables);
+    nodes.a = l.a, nodes.b = l.b, nodes.step_a = l.alpha / size_, nodes.step_b = l.beta / size_;
+    nodes.node = rule.node.data(), nodes.weight = rule.weight.data(), nodes.count = l.count;
+    float sum[3];
+    colour_map_kernels::line_sum(nodes, sum);
     return {sum[0], sum[1], sum[2]};
 }
 

@@ -46,7 +46,8 @@ public:
     Rgb filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
     /// filtered() as the texture evaluates it: the same nodes, levels and weights, each node's
     /// (up to four) blurred tables read as RGB vectors of four floats and blended in single
-    /// precision with the level weights folded into the bilinear weights. Within ~1e-6 of
+    /// precision with the level weights folded into the bilinear weights, the nodes' addresses
+    /// computed across the nodes (colour_map_kernels.h). Within ~1e-6 of
     /// filtered() (tests/raster_paths_test.cpp measures the colour-map output against it).
     Rgb lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
     /// E[S(N)] by brute-force quadrature over the unblurred map (a test oracle; slow).

@@ -11,25 +11,6 @@ namespace {
 
 constexpr int record = PackedMomentPyramid::record;
 
-/// packed_pairs() at compile time.
-template <int Channels>
-struct Pairs;
-template <>
-struct Pairs<1> {
-    static constexpr int count = 1;
-    static constexpr int first[1] = {0}, second[1] = {0};
-};
-template <>
-struct Pairs<2> {
-    static constexpr int count = 3;
-    static constexpr int first[3] = {0, 0, 1}, second[3] = {0, 1, 1};
-};
-template <>
-struct Pairs<3> {  // the variances only: what the colour output reads
-    static constexpr int count = 3;
-    static constexpr int first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
-};
-
 /// Pixels per pass of the address stage (its buffers hold taps × 3 tiles × this many lanes).
 constexpr std::size_t chunk = 64;
 
@@ -43,9 +24,9 @@ PackedPairs packed_pairs(int channels)
         for (int k = 0; k < pairs.count; ++k) p.first[std::size_t(k)] = pairs.first[k], p.second[std::size_t(k)] = pairs.second[k];
     };
     switch (channels) {
-    case 1: fill(Pairs<1>{}); break;
-    case 2: fill(Pairs<2>{}); break;
-    default: fill(Pairs<3>{}); break;
+    case 1: fill(tiling_raster::RecordPairs<1>{}); break;
+    case 2: fill(tiling_raster::RecordPairs<2>{}); break;
+    default: fill(tiling_raster::RecordPairs<3>{}); break;
     }
     return p;
 }
@@ -135,7 +116,6 @@ const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspac
 template <int Channels>
 void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& ws, float* out) const
 {
-    using P = Pairs<Channels>;
     const TapPlan& taps = plan.taps;
     const int n_taps = taps.na * taps.nb;
     // Positions much farther apart than the triangles (a strongly minified row) would make the
@@ -204,7 +184,6 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
     sums.taps = n_taps, sums.channels = Channels;
     sums.offsets = ws.offsets_.data(), sums.fractions = ws.fractions_.data(), sums.lanes = lanes;
     sums.ratio = plan.ratio.data(), sums.scatter = plan.scatter.data(), sums.weight = plan.weight, sums.inverse_total = plan.inverse_total;
-    sums.pairs = P::count, sums.first = P::first, sums.second = P::second;
     tiling_raster::accumulate_taps(sums, count, out);
 }
 

@@ -18,6 +18,23 @@ namespace stochtex::tiling_raster {
 /// Vectors hold at most this many doubles on any target (AVX-512: 8): inputs are padded to it.
 constexpr std::size_t max_lanes = 8;
 
+/// The second moments a packed record keeps (lane Channels + p holds moment (first[p], second[p])):
+/// for 3 channels the variances only (what the colour output reads), for 1–2 all of them.
+template <int Channels>
+struct RecordPairs;
+template <>
+struct RecordPairs<1> {
+    static constexpr int count = 1, first[1] = {0}, second[1] = {0};
+};
+template <>
+struct RecordPairs<2> {
+    static constexpr int count = 3, first[3] = {0, 0, 1}, second[3] = {0, 1, 1};
+};
+template <>
+struct RecordPairs<3> {
+    static constexpr int count = 3, first[3] = {0, 1, 2}, second[3] = {0, 1, 2};
+};
+
 /// A pyramid level's geometry for the address stage (PackedMomentPyramid::Level).
 struct LevelGeometry {
     double scale_x, scale_y;          ///< texels per level-0 pixel
@@ -78,16 +95,13 @@ struct TapSums {
     const float* lower;
     const float* upper;  ///< null: one level
     float t;
-    int taps, channels;
+    int taps, channels;  ///< the record's moment lanes: RecordPairs<channels>
     const std::int32_t* offsets;
     const float* fractions;
     std::size_t lanes;
     const float* ratio;
     const float* scatter;
     float weight, inverse_total;
-    int pairs;
-    const int* first;  ///< moment lane channels + p is moment (first[p], second[p])
-    const int* second;
 };
 void accumulate_taps(const TapSums& sums, std::size_t count, float* out);
 

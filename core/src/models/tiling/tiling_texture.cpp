@@ -154,11 +154,42 @@ void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out
     PlaneCache cache;
     std::vector<double> x(std::size_t(region.width));
     for (int i = 0; i < region.width; ++i) x[std::size_t(i)] = region.u(i) * ppu;
+    if (TilingRaster::serves(plan)) {
+        cache.packed.resize(x.size() * PackedMomentPyramid::record);
+        for (int j = 0; j < region.height; ++j) {
+            rasters_[0].estimate_row(x.data(), x.size(), region.v(j) * ppu, plan, cache.workspace, cache.packed.data());
+            colour_row(cache.packed.data(), x.size(), out, std::size_t(j) * region.width, cache);
+        }
+        return;
+    }
     std::vector<Moments> row(std::size_t(region.width));
     for (int j = 0; j < region.height; ++j) {
         plane_row(0, x.data(), x.size(), region.v(j) * ppu, plan, cache, row.data());
         for (int i = 0; i < region.width; ++i) out.set(std::size_t(j) * region.width + i, colour(row[std::size_t(i)]));
     }
+}
+
+void TilingTexture::colour_row(const float* packed, std::size_t count, const RgbOutput& out, std::size_t first, PlaneCache& cache) const
+{
+    constexpr int record = PackedMomentPyramid::record;
+    if (output_ != TilingOutput::colour) {
+        for (std::size_t i = 0; i < count; ++i) out.set(first + i, colour(rasters_[0].unpack(packed + i * record)));
+        return;
+    }
+    // unpack()'s means and colour()'s spreads, planar: record lanes 0–2 the centred means, 3–5
+    // the variances (packed_pairs(3)).
+    const Moments& global = planes_[0].global();
+    cache.channels.resize(6 * count);
+    std::array<double*, 3> z{}, spread{};
+    for (int c = 0; c < 3; ++c) z[c] = cache.channels.data() + std::size_t(c) * count, spread[c] = z[c] + 3 * count;
+    for (std::size_t i = 0; i < count; ++i) {
+        const float* p = packed + i * record;
+        for (int c = 0; c < 3; ++c) {
+            z[c][i] = global.mean[std::size_t(c)] + double(p[c]);
+            spread[c][i] = std::sqrt(std::max(0.0, double(p[3 + c])));
+        }
+    }
+    colour_mapping_->to_rgb({z[0], z[1], z[2]}, {spread[0], spread[1], spread[2]}, count, out, first);
 }
 
 TilingTexture::SolidPlan TilingTexture::solid_plan(const SurfacePoint& point) const

@@ -97,6 +97,7 @@ private:
         TileCache tiles;
         std::vector<double> x;
         std::vector<float> packed;
+        std::vector<double> channels;  ///< colour_row's planar means and spreads
         PlaneCache() = default;
         /// A cache for one evaluation (its taps share a few vertices).
         explicit PlaneCache(bool single) : workspace(single ? 2 : 6, single ? 2 : 4) {}
@@ -104,6 +105,10 @@ private:
     /// A point evaluation's cache of plane k (this thread's, emptied).
     static PlaneCache& single_cache(int k);
     SolidPlan solid_plan(const SurfacePoint& point) const;
+    /// colour(raster.unpack(record)) of `count` packed records (TilingRaster's layout) into out
+    /// items first + i, bit-identical to it: the colour output's histogram maps resolved once per
+    /// row (TabulatedColourMapping's row form), the unpacking to double Moments skipped.
+    void colour_row(const float* packed, std::size_t count, const RgbOutput& out, std::size_t first, PlaneCache& cache) const;
     /// The solid blend of the planes' moments (planes of weight 0 are not read).
     Moments solid_moments(const SolidPlan& plan, const std::array<Moments, 3>& planes) const;
     /// Plane k's moments at (x, y) exemplar pixels with a planned footprint.
