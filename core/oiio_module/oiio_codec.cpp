@@ -225,11 +225,11 @@ public:
         });
     }
 
-    bool convert_colour(float* rgb, std::size_t pixels, const std::string& from, const std::string& to,
+    bool convert_colour(float* values, std::size_t pixels, int channels, const std::string& from, const std::string& to,
                         std::string& error) override
     {
-        OIIO::ImageSpec spec(int(pixels), 1, 3, OIIO::TypeDesc::FLOAT);
-        OIIO::ImageBuf buffer(spec, rgb);
+        OIIO::ImageSpec spec(int(pixels), 1, channels, OIIO::TypeDesc::FLOAT);
+        OIIO::ImageBuf buffer(spec, values);
         if (OIIO::ImageBufAlgo::colorconvert(buffer, buffer, from, to)) return true;
         error = buffer.geterror();
         return false;

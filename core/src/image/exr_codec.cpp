@@ -130,15 +130,17 @@ std::string make_header(const ImageHeader& header, int width, int height, Imf::H
     return {};
 }
 
-/// The slices of a band of rows starting at y0 (at x 0): `pixels` holds `names.size()` floats
-/// a texel in that order, rows of `width` texels. OpenEXR addresses by absolute coordinates.
-Imf::FrameBuffer frame(const std::vector<std::string>& names, const float* pixels, int width, int y0)
+/// The slices of a band of rows starting at y0 (at x 0): `pixels` holds `names.size()` samples
+/// of `type` (FLOAT: float, HALF: Imath::half) a texel in that order, rows of `width` texels.
+/// OpenEXR addresses by absolute coordinates.
+Imf::FrameBuffer frame(const std::vector<std::string>& names, const void* pixels, int width, int y0,
+                       Imf::PixelType type = Imf::FLOAT)
 {
-    const std::size_t xstride = sizeof(float) * names.size(), ystride = xstride * std::size_t(width);
-    char* base = const_cast<char*>(reinterpret_cast<const char*>(pixels)) - std::ptrdiff_t(y0) * std::ptrdiff_t(ystride);
+    const std::size_t sample = type == Imf::HALF ? sizeof(Imath::half) : sizeof(float);
+    const std::size_t xstride = sample * names.size(), ystride = xstride * std::size_t(width);
+    char* base = const_cast<char*>(static_cast<const char*>(pixels)) - std::ptrdiff_t(y0) * std::ptrdiff_t(ystride);
     Imf::FrameBuffer frame;
-    for (std::size_t c = 0; c < names.size(); ++c)
-        frame.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xstride, ystride));
+    for (std::size_t c = 0; c < names.size(); ++c) frame.insert(names[c], Imf::Slice(type, base + c * sample, xstride, ystride));
     return frame;
 }
 
@@ -220,6 +222,7 @@ public:
                 return "OpenEXR counts " + std::to_string(file.numLevels()) + " MIP levels, the image " +
                        std::to_string(source.levels);
             const int tile = header.tile_size;
+            const bool half = header.sample == Sample::half;
             double done = 0;
             for (int level = 0; level < source.levels; ++level) {
                 const auto [width, height] = source.level_size(level);
@@ -228,10 +231,15 @@ public:
                            std::to_string(height) + ", OpenEXR expects " + std::to_string(file.levelWidth(level)) + "x" +
                            std::to_string(file.levelHeight(level));
                 std::vector<float> strip(std::size_t(width) * tile * header.channels);
+                // Tiled files take samples of the file's type only: half is converted here, with
+                // Imath's round-to-nearest-even (OIIO's conversion).
+                std::vector<Imath::half> halves(half ? strip.size() : 0);
                 for (int y0 = 0, row = 0; y0 < height; y0 += tile, ++row) {
                     const int rows = std::min(tile, height - y0);
                     source.fill(level, y0, rows, strip.data());
-                    file.setFrameBuffer(frame(names, strip.data(), width, y0));
+                    if (half) std::copy(strip.begin(), strip.end(), halves.begin());
+                    file.setFrameBuffer(half ? frame(names, halves.data(), width, y0, Imf::HALF)
+                                             : frame(names, strip.data(), width, y0));
                     file.writeTiles(0, file.numXTiles(level) - 1, row, row, level);
                     done += double(width) * rows;
                     if (source.progress) source.progress(done);
@@ -243,7 +251,7 @@ public:
         return {};
     }
 
-    bool convert_colour(float*, std::size_t, const std::string&, const std::string&, std::string& error) override
+    bool convert_colour(float*, std::size_t, int, const std::string&, const std::string&, std::string& error) override
     {
         error = "the EXR codec converts no colours";
         return false;

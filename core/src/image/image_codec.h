@@ -99,10 +99,10 @@ public:
     virtual std::string write(const std::string& path, const std::string& target, const ImageHeader& header,
                               const float* pixels) = 0;
     virtual std::string write_mip(const std::string& path, const std::string& target, const MipSource& source) = 0;
-    /// Converts RGB floats in place between named colour spaces; false if it does not know them
-    /// (`error` says why).
-    virtual bool convert_colour(float* rgb, std::size_t pixels, const std::string& from, const std::string& to,
-                                std::string& error) = 0;
+    /// Converts `pixels` pixels of `channels` floats in place between named colour spaces;
+    /// false if it does not know them (`error` says why).
+    virtual bool convert_colour(float* values, std::size_t pixels, int channels, const std::string& from,
+                                const std::string& to, std::string& error) = 0;
     /// nullptr where the codec has no texture system.
     virtual std::unique_ptr<TextureLookups> texture_lookups() { return nullptr; }
 };

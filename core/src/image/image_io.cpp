@@ -61,17 +61,25 @@ namespace {
 /// ColorProcessor_sRGB_to_linear); that is what this does, with the same inline functions.
 /// Anything else (a config, other spaces, OIIO ≥ 2.5 whose fallback is OCIO's built-in config)
 /// goes to OIIO itself (image_codec_test.cpp checks every float in [0, 1] both ways).
+#if OIIO_VERSION < 20500
 bool closed_form_srgb(const std::string& from, const std::string& to)
 {
-#if OIIO_VERSION < 20500
     const char* config = std::getenv("OCIO");
     if (config && *config) return false;
     return (from == "linear" && to == "sRGB") || (from == "sRGB" && to == "linear");
-#else
-    (void)from, (void)to;
-    return false;
-#endif
 }
+
+void convert_srgb(Image& image, bool to_linear)
+{
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        float* rgb = &image.pixels[i * 3];
+        OIIO::simd::vfloat4 v;
+        v.load(rgb, 3);
+        v = to_linear ? OIIO::sRGB_to_linear(v) : OIIO::linear_to_sRGB(v);
+        v.store(rgb, 3);
+    }
+}
+#endif
 
 }  // namespace
 
@@ -80,21 +88,12 @@ void convert_colour_space(Image& image, const std::string& from, const std::stri
     if (from == to || (is_scene_linear(from) && is_scene_linear(to))) return;
     const std::string source = is_scene_linear(from) ? "linear" : from;
     const std::string target = is_scene_linear(to) ? "linear" : to;
-    if (image.channels == 3 && closed_form_srgb(source, target)) {
-        const bool to_linear = source == "sRGB";
-        for (std::size_t i = 0; i < image.pixel_count(); ++i) {
-            float* rgb = &image.pixels[i * 3];
-            OIIO::simd::vfloat4 v;
-            v.load(rgb, 3);
-            v = to_linear ? OIIO::sRGB_to_linear(v) : OIIO::linear_to_sRGB(v);
-            v.store(rgb, 3);
-        }
-        return;
-    }
-    if (image.channels != 3) throw Error("cannot convert colours of a " + std::to_string(image.channels) + "-channel image");
+#if OIIO_VERSION < 20500
+    if (image.channels == 3 && closed_form_srgb(source, target)) return convert_srgb(image, source == "sRGB");
+#endif
     std::string error;
     if (!codec::oiio_codec("converting colours from '" + from + "' to '" + to + "'")
-             .convert_colour(image.pixels.data(), image.pixel_count(), source, target, error))
+             .convert_colour(image.pixels.data(), image.pixel_count(), image.channels, source, target, error))
         throw Error("cannot convert colours from '" + from + "' to '" + to + "': " + error);
 }
 

@@ -91,6 +91,8 @@ bool decode(Source& source, bool pixels, Decoded& out, PngErrors& errors, bool d
         ~Destroy() { png_destroy_read_struct(png, info, nullptr); }
     } destroy{&png, &info};
     if (!info) return errors.message = "out of memory", false;
+    // Every C++ object the longjmp below may skip is built before the setjmp.
+    std::vector<png_bytep> rows;
     if (setjmp(png_jmpbuf(png))) return false;
     png_set_read_fn(png, &source, &Source::read);
     png_read_info(png, info);
@@ -122,7 +124,7 @@ bool decode(Source& source, bool pixels, Decoded& out, PngErrors& errors, bool d
     png_read_update_info(png, info);
     const std::size_t stride = png_get_rowbytes(png, info);
     out.rows.resize(stride * height);
-    std::vector<png_bytep> rows(height);
+    rows.resize(height);
     for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rows.data() + y * stride;
     png_read_image(png, rows.data());
     png_read_end(png, nullptr);
@@ -181,6 +183,8 @@ std::string encode(Sink& sink, const ImageHeader& header, const std::uint8_t* ro
         ~Destroy() { png_destroy_write_struct(png, info); }
     } destroy{&png, &info};
     if (!info) return "out of memory";
+    // Every C++ object the longjmp below may skip is built before the setjmp.
+    std::vector<png_text> texts;
     if (setjmp(png_jmpbuf(png))) return errors.message.empty() ? std::string("PNG encoding failed") : errors.message;
     png_set_write_fn(png, &sink, &Sink::write, &Sink::flush);
     png_set_compression_level(png, level);
@@ -191,13 +195,9 @@ std::string encode(Sink& sink, const ImageHeader& header, const std::uint8_t* ro
     png_set_IHDR(png, info, png_uint_32(header.width), png_uint_32(header.height), header.sample == Sample::u16 ? 16 : 8,
                  colour, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
-    std::vector<png_text> texts;
-    std::vector<std::pair<std::string, std::string>> kept;
+    texts.reserve(header.attributes.size());
     for (const auto& [name, value] : header.attributes) {
         if (name == "oiio:ColorSpace" && value == "sRGB") png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
-        kept.emplace_back(name, value);
-    }
-    for (auto& [name, value] : kept) {
         png_text text{};
         text.compression = PNG_TEXT_COMPRESSION_NONE;
         text.key = const_cast<char*>(name.c_str());
@@ -274,7 +274,7 @@ public:
         return "PNG cannot hold a tiled, MIP-mapped image";
     }
 
-    bool convert_colour(float*, std::size_t, const std::string&, const std::string&, std::string& error) override
+    bool convert_colour(float*, std::size_t, int, const std::string&, const std::string&, std::string& error) override
     {
         error = "the PNG codec converts no colours";
         return false;
