@@ -65,7 +65,7 @@ std::vector<float> read_with_oiio(const std::string& path, OIIO::ImageSpec* spec
 std::vector<float> read_with_built_in(codec::ImageCodec& codec, const std::string& path, codec::ImageHeader* header_out)
 {
     std::string error;
-    auto reader = codec.open(path, error);
+    auto reader = codec.open(path, false, error);
     EXPECT_TRUE(reader) << path << ": " << error;
     if (!reader) return {};
     const codec::ImageHeader& header = reader->header();
@@ -143,7 +143,7 @@ TEST(ImageCodec, PngDeclinesWhatOiioInterprets)
     // Alpha (associated on reading), and a gAMA chunk (OIIO: "Gamma2.2"): left to OIIO.
     for (const std::string& path : {alpha, test::repo_exemplar("concrete_512.png")}) {
         std::string error;
-        EXPECT_FALSE(codec::png_codec().open(path, error)) << path;
+        EXPECT_FALSE(codec::png_codec().open(path, false, error)) << path;
         EXPECT_EQ(error, "") << path;
     }
 }
@@ -225,6 +225,34 @@ TEST(ImageCodec, ExrReadsTheSamePixelsAndChannelsAsOiio)
         EXPECT_EQ(header.attribute("oiio:ColorSpace"), read_spec.get_string_attribute("oiio:ColorSpace")) << path;
         ASSERT_EQ(pixels.size(), expected.size());
         EXPECT_EQ(std::memcmp(pixels.data(), expected.data(), 4 * pixels.size()), 0) << path;
+    }
+}
+
+/// Layered names (the ptm coefficient maps) are left to OIIO, unless the caller finds channels
+/// by name: then every named channel holds OIIO's values.
+TEST(ImageCodec, ExrReadsLayeredChannelsByName)
+{
+    const std::string path = test::temp_dir("ImageCodec.ExrByName") + "/layers.exr";
+    OIIO::ImageSpec spec(11, 7, 5, OIIO::TypeDesc::HALF);
+    spec.channelnames = {"Y.b0", "Y.b1", "chroma.R", "chroma.G", "chroma.B"};
+    const std::vector<float> values = random_values(spec.image_pixels() * 5, 17, -3.0f, 3.0f);
+    write_with_oiio(path, spec, values.data());
+    std::string error;
+    EXPECT_FALSE(codec::exr_codec().open(path, false, error));
+    EXPECT_EQ(error, "");
+    OIIO::ImageSpec read_spec;
+    const std::vector<float> expected = read_with_oiio(path, &read_spec);
+    auto reader = codec::exr_codec().open(path, true, error);
+    ASSERT_TRUE(reader) << error;
+    const codec::ImageHeader header = reader->header();
+    ASSERT_EQ(header.channels, 5);
+    std::vector<float> pixels(std::size_t(header.width) * header.height * 5);
+    ASSERT_EQ(reader->read(5, pixels.data()), "");
+    for (int c = 0; c < 5; ++c) {
+        const int theirs = read_spec.channelindex(header.channel_names[c]);
+        ASSERT_GE(theirs, 0) << header.channel_names[c];
+        for (std::size_t i = 0; i < pixels.size() / 5; ++i)
+            ASSERT_EQ(pixels[i * 5 + c], expected[i * 5 + theirs]) << header.channel_names[c] << " texel " << i;
     }
 }
 

@@ -1,9 +1,10 @@
 // stochtex — the built-in OpenEXR codec (image_codec.h), the OpenEXR library directly.
 //
 // Reads scanline and tiled files (level 0) whose channels are half or float and either R, G, B
-// (and A), or names OIIO keeps in the file's order (no R, G, B, A, Y, Z, no layers): what
-// stochtex writes and the usual photo EXRs. It declines the rest (layers, luminance/chroma,
-// subsampled, integer or deep channels), which OIIO then reads as before. It writes scanline
+// (and A), or names OIIO keeps in the file's order (no R, G, B, A, Y, Z, no layers), or any
+// names for a caller that finds channels by name (the ptm coefficient maps): what stochtex
+// writes and the usual photo EXRs. It declines the rest (layers, luminance/chroma, subsampled,
+// integer or deep channels), which OIIO then reads as before. It writes scanline
 // and tiled MIP-mapped files with the header OIIO wrote for the same ImageSpec
 // (tests/image_codec_test.cpp).
 #include "image/image_codec.h"
@@ -148,7 +149,7 @@ class ExrCodec final : public ImageCodec {
 public:
     const char* name() const override { return "OpenEXR"; }
 
-    std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) override
+    std::unique_ptr<ImageReader> open(const std::string& path, bool by_name, std::string& error) override
     {
         try {
             auto file = std::make_unique<Imf::InputFile>(path.c_str());
@@ -163,7 +164,7 @@ public:
                 any_special |= special(c.name());
                 rgb_family &= rgba_rank(c.name()) >= 0;
             }
-            if (any_special && !rgb_family) return nullptr;
+            if (any_special && !rgb_family && !by_name) return nullptr;
             if (rgb_family)
                 std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) { return rgba_rank(a) < rgba_rank(b); });
             ImageHeader header;

@@ -90,8 +90,10 @@ public:
     virtual ~ImageCodec() = default;
     virtual const char* name() const = 0;
     /// nullptr with `error` set if the file cannot be opened; nullptr with `error` empty if this
-    /// codec declines a file it could open (the caller then asks the next codec).
-    virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) = 0;
+    /// codec declines a file it could open (the caller then asks the next codec). `by_name`: the
+    /// caller finds the channels by their names, so their order may be the file's rather than
+    /// the one OIIO would give (the built-in EXR reader then takes layered names too).
+    virtual std::unique_ptr<ImageReader> open(const std::string& path, bool by_name, std::string& error) = 0;
     /// Whether `path`'s extension names a format this codec writes; `format` receives its name.
     virtual bool writes(const std::string& path, bool tiled_mip, std::string& format) = 0;
     /// Writes `pixels` (header.channels floats a pixel, top row first, stored as header.sample).
@@ -120,7 +122,7 @@ void register_oiio_codec(ImageCodec* codec);
 /// `path` opened by the codec that reads it (chosen by the file's first bytes): built in for
 /// PNG and EXR unless it declines the file, else OIIO. nullptr with `error` set if it cannot be
 /// opened.
-std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& error);
+std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& error, bool by_name = false);
 /// The codec that writes `path`'s format (by extension; tiled_mip: as a tiled, MIP-mapped
 /// image), or nullptr if none does. `format` receives the format's name where it is known.
 ImageCodec* writer_for(const std::string& path, bool tiled_mip, std::string& format);

@@ -212,7 +212,7 @@ void write_data_image(const std::string& path, int width, int height, const std:
 
 namespace codec {
 
-std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& error)
+std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& error, bool by_name)
 {
     // The format by the first bytes, as OIIO falls back to when the extension misleads.
     unsigned char magic[8] = {};
@@ -226,10 +226,10 @@ std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& er
                            : std::equal(exr, exr + 4, magic) ? &exr_codec()
                                                              : nullptr;
     if (built_in) {
-        auto reader = built_in->open(path, error);
+        auto reader = built_in->open(path, by_name, error);
         if (reader || !error.empty()) return reader;
     }
-    return oiio_codec("reading " + path).open(path, error);
+    return oiio_codec("reading " + path).open(path, by_name, error);
 }
 
 ImageCodec* writer_for(const std::string& path, bool tiled_mip, std::string& format)

@@ -230,7 +230,7 @@ class PngCodec final : public ImageCodec {
 public:
     const char* name() const override { return "PNG"; }
 
-    std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) override
+    std::unique_ptr<ImageReader> open(const std::string& path, bool, std::string& error) override
     {
         std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
         if (!file) return error = std::strerror(errno), nullptr;

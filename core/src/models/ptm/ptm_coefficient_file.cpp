@@ -43,7 +43,7 @@ PtmMaps read_ptm_coefficients(const std::string& path, PtmColour colour, const s
     auto fail = [&](const std::string& problem) -> void { throw Error(what + ": " + problem); };
     if (!fs::is_regular_file(path)) fail("coefficient file '" + path + "' does not exist");
     std::string error;
-    const auto input = codec::open_image(path, error);
+    const auto input = codec::open_image(path, error, /*by_name=*/true);
     if (!input) fail("cannot read coefficient file '" + path + "': " + error);
     const codec::ImageHeader spec = input->header();
     if (spec.width < 1 || spec.height < 1 || spec.width > max_ptm_side || spec.height > max_ptm_side ||
