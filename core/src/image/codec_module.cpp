@@ -13,8 +13,10 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <vector>
 
 namespace stochtex::codec {
 
@@ -87,7 +89,7 @@ ImageCodec& oiio_codec(const std::string& why)
     static Loaded loaded;
     std::call_once(once, [] { loaded = load(); });
     if (!loaded.codec)
-        throw Error(why + ": this needs the OpenImageIO module " + loaded.file + ", which cannot be loaded: " + loaded.error);
+        throw Error(why + " needs the OpenImageIO module " + loaded.file + ", which cannot be loaded: " + loaded.error);
     return *loaded.codec;
 }
 

@@ -8,7 +8,6 @@
 // and tiled MIP-mapped files with the header OIIO wrote for the same ImageSpec
 // (tests/image_codec_test.cpp).
 #include "image/image_codec.h"
-#include "image/png_memory.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfPartType.h>
@@ -22,6 +21,7 @@
 #include <OpenEXR/ImfTiledOutputFile.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <ctime>
 #include <exception>
 #include <map>
@@ -169,8 +169,14 @@ public:
                 std::sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) { return rgba_rank(a) < rgba_rank(b); });
             ImageHeader header;
             const Imath::Box2i window = exr.dataWindow();
-            header.width = window.max.x - window.min.x + 1;
-            header.height = window.max.y - window.min.y + 1;
+            // In 64 bits: a malformed header's window may not fit an int (callers then check
+            // the size against their limits before reading a pixel).
+            const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1,
+                               height = std::int64_t(window.max.y) - window.min.y + 1;
+            if (width < 1 || height < 1 || width > (1 << 30) || height > (1 << 30))
+                return error = "data window of " + std::to_string(width) + "x" + std::to_string(height) + " pixels", nullptr;
+            header.width = int(width);
+            header.height = int(height);
             header.channels = int(names.size());
             header.channel_names = names;
             const auto alpha = std::find(names.begin(), names.end(), "A");

@@ -113,8 +113,8 @@ public:
 ImageCodec& png_codec();
 ImageCodec& exr_codec();
 /// The OpenImageIO codec: registered by a front-end that links OIIO anyway (the plugin), else
-/// loaded from the module on first call. Throws Error "<why>: <format> needs the OpenImageIO
-/// module <file>, which cannot be loaded: <dlerror>".
+/// loaded from the module on first call. Throws Error "<why> needs the OpenImageIO module
+/// <file>, which cannot be loaded: <dlerror>" (why: e.g. "o.tif: writing .tif files").
 ImageCodec& oiio_codec(const std::string& why);
 /// For a front-end that links OIIO itself: use this codec instead of loading the module.
 void register_oiio_codec(ImageCodec* codec);
@@ -126,6 +126,9 @@ std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& er
 /// The codec that writes `path`'s format (by extension; tiled_mip: as a tiled, MIP-mapped
 /// image), or nullptr if none does. `format` receives the format's name where it is known.
 ImageCodec* writer_for(const std::string& path, bool tiled_mip, std::string& format);
+
+/// Whether `path` ends with `extension` (lower case, with the dot), ignoring case.
+bool has_extension(const std::string& path, const char* extension);
 
 /// The interface version the module must report (oiio_codec.cpp's stochtex_image_codec()).
 constexpr int module_interface_version = 1;

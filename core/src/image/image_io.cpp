@@ -212,6 +212,15 @@ void write_data_image(const std::string& path, int width, int height, const std:
 
 namespace codec {
 
+bool has_extension(const std::string& path, const char* extension)
+{
+    const std::size_t n = std::strlen(extension);
+    if (path.size() < n) return false;
+    for (std::size_t i = 0; i < n; ++i)
+        if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != extension[i]) return false;
+    return true;
+}
+
 std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& error, bool by_name)
 {
     // The format by the first bytes, as OIIO falls back to when the extension misleads.
@@ -229,7 +238,8 @@ std::unique_ptr<ImageReader> open_image(const std::string& path, std::string& er
         auto reader = built_in->open(path, by_name, error);
         if (reader || !error.empty()) return reader;
     }
-    return oiio_codec("reading " + path).open(path, by_name, error);
+    return oiio_codec(path + ": reading " + (built_in ? std::string("this ") + built_in->name() + " file (left to OIIO)" : "its format"))
+        .open(path, by_name, error);
 }
 
 ImageCodec* writer_for(const std::string& path, bool tiled_mip, std::string& format)
@@ -237,7 +247,8 @@ ImageCodec* writer_for(const std::string& path, bool tiled_mip, std::string& for
     for (ImageCodec* built_in : {&png_codec(), &exr_codec()})
         if (built_in->writes(path, tiled_mip, format)) return built_in;
     if (!format.empty()) return nullptr;  // a built-in format that cannot do what is asked
-    ImageCodec& oiio = oiio_codec("writing " + path);
+    const std::string extension = std::filesystem::path(path).extension().string();
+    ImageCodec& oiio = oiio_codec(path + ": writing " + (extension.empty() ? "a file without an extension" : "'" + extension + "' files"));
     return oiio.writes(path, tiled_mip, format) ? &oiio : nullptr;
 }
 

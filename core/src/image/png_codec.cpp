@@ -283,15 +283,6 @@ public:
 
 }  // namespace
 
-bool has_extension(const std::string& path, const char* extension)
-{
-    const std::size_t n = std::strlen(extension);
-    if (path.size() < n) return false;
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != extension[i]) return false;
-    return true;
-}
-
 ImageCodec& png_codec()
 {
     static PngCodec codec;

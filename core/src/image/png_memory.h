@@ -17,7 +17,4 @@ std::vector<std::uint8_t> encode_grey_png(int width, int height, int bits, const
 std::string decode_grey_png(const std::vector<std::uint8_t>& png, int& width, int& height, int& channels, int& bits,
                             std::vector<std::uint16_t>* samples);
 
-/// Whether `path` ends with `extension` (lower case, with the dot), ignoring case.
-bool has_extension(const std::string& path, const char* extension);
-
 }  // namespace stochtex::codec
