@@ -316,3 +316,32 @@ TEST(ImageCodec, ExrWritesWhatOiioWrote)
 }
 
 }  // namespace
+
+namespace {
+
+/// What `stex` needs at start-up: not OIIO. It renders PNG and EXR with the module out of
+/// reach, and names the module when a format needs it.
+TEST(ImageCodec, StexRendersPngAndExrWithoutTheOiioModule)
+{
+    const std::string dir = test::temp_dir("ImageCodec.NoModule");
+    const std::string stex = "STOCHTEX_OIIO_MODULE=/nonexistent/stochtex_oiio.so " + test::shell_quote(STOCHTEX_CLI);
+    const std::string texture = test::shell_quote(dir + "/phasor.stex");
+    const test::CommandResult made = test::run_command(stex + " tiling phasor -o " + texture);
+    ASSERT_EQ(made.status, 0) << made.output;
+    for (const char* image : {"/a.exr", "/a.png"}) {
+        const test::CommandResult r =
+            test::run_command(stex + " render " + texture + " --size 8x8 -o " + test::shell_quote(dir + image));
+        EXPECT_EQ(r.status, 0) << image << ": " << r.output;
+    }
+    const test::CommandResult tif =
+        test::run_command(stex + " render " + texture + " --size 8x8 -o " + test::shell_quote(dir + "/a.tif"));
+    EXPECT_NE(tif.status, 0);
+    EXPECT_TRUE(test::contains(tif.output, "writing '.tif' files needs the OpenImageIO module /nonexistent/stochtex_oiio.so"))
+        << tif.output;
+    if (test::on_path("ldd")) {
+        const test::CommandResult libraries = test::run_command("ldd " + test::shell_quote(STOCHTEX_CLI));
+        EXPECT_FALSE(test::contains(libraries.output, "libOpenImageIO")) << libraries.output;
+    }
+}
+
+}  // namespace
