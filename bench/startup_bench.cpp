@@ -2,7 +2,10 @@
 //
 //   Startup/render1x1/<model>[/solid]   `stex render T.stex --size 1x1 -o OUT.exr`: start, read the
 //                                       .stex, build the texture (and the tables it needs),
-//                                       evaluate one pixel, write it, exit
+//                                       evaluate one pixel, write it, exit (every model; solid
+//                                       for those with a solid form; ptm reads its coefficient
+//                                       EXR beside the .stex)
+//   Startup/render1x1/<model>/png       the same to a PNG (sRGB-encoded on writing)
 //   Ref/Version                         `stex --version`: the same executable, no texture (the
 //                                       dynamic loader and static initialisation: the floor)
 //   Ref/True                            `/bin/true`: fork + exec of a minimal process
@@ -15,7 +18,8 @@
 // costs before its first pixel (goal: the whole command ≤ 100 ms).
 //
 // STOCHTEX_REFERENCE_STEX=/path/to/other/stex adds the same commands run by another build
-// (Reference/...), interleaved in the same run: before/after figures on a shared machine.
+// (Reference/..., Reference/Version its floor), each registered right after this build's: the
+// two alternate through the run, so before/after figures share the machine's load.
 #include <benchmark/benchmark.h>
 
 #include "median_reporter.h"
@@ -88,7 +92,11 @@ public:
                     "texture costs; the ms column above is wall time, which a loaded machine inflates):\n");
         for (const auto& [name, entry] : medians()) {
             std::printf("  %-40s %8.1f ms", name.c_str(), entry.rate);
-            if (floor && name.rfind("Ref/", 0) != 0) std::printf("   %+8.1f ms above stex --version", entry.rate - floor->rate);
+            // Each build's commands above its own floor.
+            const bool reference = name.rfind("Reference/", 0) == 0;
+            const Entry* own = reference ? find("Reference/Version") : floor;
+            if (own && name.rfind("Ref/", 0) != 0 && name != "Reference/Version")
+                std::printf("   %+8.1f ms above stex --version", entry.rate - own->rate);
             std::printf("\n");
         }
         std::fflush(stdout);
@@ -107,36 +115,52 @@ int main(int argc, char** argv)
     const fs::path photo = fs::path(STOCHTEX_SOURCE_DIR) / "data" / "exemplars" / "concrete_512.png";
     const fs::path folder = fs::temp_directory_path() / ("stochtex_startup_bench." + std::to_string(getpid()));
     fs::create_directories(folder);
-    const std::string output = (folder / "pixel.exr").string();
+    const std::string output = (folder / "pixel.exr").string(), output_png = (folder / "pixel.png").string();
 
     benchmark::RegisterBenchmark("Ref/True", bm_command, std::vector<std::string>{"/bin/true"},
                                  "fork+exec of /bin/true")
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
-    benchmark::RegisterBenchmark("Ref/Version", bm_command, std::vector<std::string>{stex, "--version"},
-                                 "stex --version: loader + static initialisation")
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
     std::vector<std::pair<std::string, std::string>> programs{{"Startup", stex}};
     if (const char* reference = std::getenv("STOCHTEX_REFERENCE_STEX")) programs.push_back({"Reference", reference});
+    auto add = [&](const std::string& name, const std::vector<std::string>& args, const std::string& label) {
+        benchmark::RegisterBenchmark(name.c_str(), bm_command, args, label)->Unit(benchmark::kMillisecond)->UseRealTime();
+    };
+    for (const auto& [prefix, program] : programs)
+        add(prefix == "Startup" ? "Ref/Version" : "Reference/Version", {program, "--version"},
+            "stex --version: loader + static initialisation, " + program);
+
+    // The textures: one per model, analysed once before any timing (ptm: fitted to a relief
+    // rendered from the photo as a height map, 12 lights).
+    std::vector<std::pair<std::string, std::string>> textures;
     for (const char* model : {"wavelet", "gabor", "lrp", "tiling"}) {
         const std::string texture = (folder / (std::string(model) + ".stex")).string();
         if (run({stex, "analyze", photo.string(), "--model", model, "-o", texture}) != 0) {
             std::fprintf(stderr, "startup_bench: cannot analyse %s with %s\n", photo.string().c_str(), model);
             return 1;
         }
-        for (bool solid : {false, true})
-            for (const auto& [prefix, program] : programs) {
-                std::vector<std::string> args{program, "render", texture, "--size", "1x1", "-o", output};
-                if (solid) args.push_back("--solid");
-                const std::string name = prefix + "/render1x1/" + model + (solid ? "/solid" : "");
-                benchmark::RegisterBenchmark(name.c_str(), bm_command, args,
-                                             std::string(model) + " (default analysis of concrete_512.png), " +
-                                                 (solid ? "solid" : "2D") + ", 1x1 EXR, " + program)
-                    ->Unit(benchmark::kMillisecond)
-                    ->UseRealTime();
-            }
+        textures.push_back({model, texture});
     }
+    const std::string relief = (folder / "relief").string(), ptm = (folder / "ptm.stex").string();
+    if (run({stex, "ptm", "relief", photo.string(), "-o", relief, "--lights", "12"}) != 0 ||
+        run({stex, "ptm", "fit", relief + "/lights.lp", "-o", ptm}) != 0) {
+        std::fprintf(stderr, "startup_bench: cannot make the ptm texture from %s\n", photo.string().c_str());
+        return 1;
+    }
+    textures.push_back({"ptm", ptm});
+
+    for (const auto& [model, texture] : textures)
+        for (const char* variant : {"", "/solid", "/png"}) {
+            const bool solid = std::strcmp(variant, "/solid") == 0, png = std::strcmp(variant, "/png") == 0;
+            if (solid && (model == "ptm" || model == "tiling")) continue;  // no solid form
+            for (const auto& [prefix, program] : programs) {
+                std::vector<std::string> args{program, "render", texture, "--size", "1x1", "-o", png ? output_png : output};
+                if (solid) args.push_back("--solid");
+                add(prefix + "/render1x1/" + model + variant, args,
+                    model + (model == "ptm" ? " (fitted to a relief of concrete_512.png)" : " (default analysis of concrete_512.png)") +
+                        ", " + (solid ? "solid" : "2D") + ", 1x1 " + (png ? "PNG" : "EXR") + ", " + program);
+            }
+        }
 
     if (console) {
         StartupReporter reporter(isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular

@@ -37,7 +37,7 @@ fi
 packages=(
   build-essential cmake pkg-config
   libopenimageio-dev openimageio-tools python3-openimageio
-  libopenexr-dev libimath-dev libopencolorio-dev
+  libopenexr-dev libimath-dev libopencolorio-dev libpng-dev
   libeigen3-dev libfftw3-dev libhwy-dev libtbb-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev
   blender xvfb xauth povray python3-numpy

@@ -1,12 +1,12 @@
 #include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
+#include <stochtex/image.h>
 #include <stochtex/model.h>
 #include <stochtex/osl/osl_shader.h>
 #include <stochtex/models/gabor_shader_data.h>
 #include <stochtex/models/tiling_shader_data.h>
 #include <stochtex/models/wavelet_shader_data.h>
 
-#include <OpenImageIO/imageio.h>
 
 #include <cctype>
 #include <cmath>
@@ -271,17 +271,8 @@ std::string tiling_shader(const TextureDescription& description, const OslShader
 void write_float_exr(const std::string& path, int width, int height, const std::vector<std::string>& channels,
                      const float* values, const char* what)
 {
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output) throw Error(path + ": cannot write: " + OIIO::geterror());
-    OIIO::ImageSpec spec(width, height, int(channels.size()), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = channels;
-    spec.attribute("compression", "zip");
-    spec.attribute("oiio:ColorSpace", "Linear");  // data, not colour: no conversion anywhere
-    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    AtomicOutput file(path);  // a failed write keeps the previous file
-    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, values) || !output->close())
-        throw Error(path + ": cannot write the " + std::string(what) + ": " + output->geterror());
-    file.commit();
+    // A failed write keeps the previous file (write_data_image goes through an AtomicOutput).
+    write_data_image(path, width, height, channels, values, std::string("the ") + what);
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 //   * analysis: scene-linear Rec.709 primaries ("linear" in OIIO/OCIO terms). Means and MIP
 //               averages are physically right only in linear light, so statistics live there.
 //   * output:   EXR/TIFF/HDR keep scene-linear values; PNG/JPEG are display-encoded (sRGB).
-// Conversions go through OIIO's ColorConfig, i.e. OpenColorIO.
+// Conversions are OIIO's: linear ↔ sRGB computed as OIIO's built-in processors compute it, any
+// other pair through OIIO's ColorConfig, i.e. OpenColorIO (loaded on first need; image_codec.h).
 #pragma once
 
 #include <cstddef>
@@ -69,5 +70,11 @@ void write_image(const std::string& path, const Image& linear_rgb);
 
 /// Converts between colour spaces known to OCIO/OIIO (e.g. "linear", "sRGB"), in place.
 void convert_colour_space(Image& image, const std::string& from, const std::string& to);
+
+/// Writes float channels as data, never colour-converted (e.g. the tables `stex osl` writes):
+/// `values` holds channel_names.size() floats a pixel, top row first; zip-compressed where the
+/// format compresses. Throws Error "<path>: cannot write <what>: …".
+void write_data_image(const std::string& path, int width, int height, const std::vector<std::string>& channel_names,
+                      const float* values, const std::string& what);
 
 }  // namespace stochtex

@@ -6,7 +6,6 @@
 
 #include "image/image_output.h"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <atomic>
@@ -56,46 +55,36 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
     layout.channels = "RGB";
     const MipImage image(description, layout, path);  // validates the description and the layout
 
-    auto output = create_image_output(path, "the bake");
+    codec::ImageCodec& writer = image_writer(path, "the bake", true);
     check_output_path(path, "the bake");
-    if (!output->supports("tiles") || !output->supports("mipmap"))
-        throw Error(path + ": the " + std::string(output->format_name()) + " format cannot hold a tiled, MIP-mapped image; use .exr");
 
     const int threads = options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    double total_texels = 0, done_texels = 0;
+    double total_texels = 0;
     for (int level = 0; level < image.level_count(); ++level)
         total_texels += double(image.level_width(level)) * image.level_height(level);
 
-    AtomicOutput file(path);  // removes its temporary on every error below
-    auto fail = [&](const std::string& what) {
-        output->close();
-        return Error(path + ": " + what);
+    codec::MipSource source;
+    source.header.width = image.level_width(0);
+    source.header.height = image.level_height(0);
+    source.header.channels = 3;
+    source.header.sample = options.half ? codec::Sample::half : codec::Sample::f32;
+    source.header.tile_size = options.tile_size;
+    source.header.set("oiio:ColorSpace", "Linear");
+    source.header.set("textureformat", "Plain Texture");
+    source.header.set("wrapmodes", "periodic,periodic");
+    source.header.set("compression", "zip");
+    source.header.set("Software", "stochtex " STOCHTEX_VERSION);
+    source.header.set("stochtex:source", description.provenance.source);
+    source.levels = image.level_count();
+    source.level_size = [&](int level) { return std::pair<int, int>(image.level_width(level), image.level_height(level)); };
+    source.fill = [&](int level, int y0, int rows, float* strip) {
+        fill_strip(image, level, y0, rows, options.tile_size, threads, strip);
     };
-    for (int level = 0; level < image.level_count(); ++level) {
-        const int width = image.level_width(level), height = image.level_height(level);
-        OIIO::ImageSpec spec(width, height, 3, options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-        spec.tile_width = spec.tile_height = options.tile_size;
-        spec.attribute("oiio:ColorSpace", "Linear");
-        spec.attribute("textureformat", "Plain Texture");
-        spec.attribute("wrapmodes", "periodic,periodic");
-        spec.attribute("openexr:levelmode", 1);  // MIPMAP_LEVELS: our levels, not generated ones
-        spec.attribute("openexr:roundingmode", 0);  // ROUND_DOWN: sizes halve as MipImage's do
-        spec.attribute("compression", "zip");
-        spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-        spec.attribute("stochtex:source", description.provenance.source);
-        const auto mode = level == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
-        if (!output->open(file.temporary(), spec, mode)) throw fail("cannot write MIP level " + std::to_string(level) + ": " + output->geterror());
-        std::vector<float> strip(std::size_t(width) * options.tile_size * 3);
-        for (int y0 = 0; y0 < height; y0 += options.tile_size) {
-            const int rows = std::min(options.tile_size, height - y0);
-            fill_strip(image, level, y0, rows, options.tile_size, threads, strip.data());
-            if (!output->write_tiles(0, width, y0, y0 + rows, 0, 1, OIIO::TypeDesc::FLOAT, strip.data()))
-                throw fail("cannot write tiles: " + output->geterror());
-            done_texels += double(width) * rows;
-            if (progress) progress(done_texels / total_texels, "bake");
-        }
-    }
-    if (!output->close()) throw fail("cannot finish the file: " + output->geterror());
+    if (progress) source.progress = [&](double done) { progress(done / total_texels, "bake"); };
+
+    AtomicOutput file(path);  // removes its temporary on every error below
+    const std::string error = writer.write_mip(path, file.temporary(), source);
+    if (!error.empty()) throw Error(path + ": " + error);
     file.commit();
     return {image.level_count(), image.period()[0], image.period()[1]};
 }
@@ -115,16 +104,17 @@ struct PositionMap {
 
 PositionMap read_positions(const std::string& path)
 {
-    auto input = OIIO::ImageInput::open(path);
-    if (!input) throw Error(path + ": cannot read the position map: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.nchannels < 4) throw Error(path + ": a position map needs RGBA (positions and coverage)");
+    std::string error;
+    const auto input = codec::open_image(path, error);
+    if (!input) throw Error(path + ": cannot read the position map: " + error);
+    const codec::ImageHeader& spec = input->header();
+    if (spec.channels < 4) throw Error(path + ": a position map needs RGBA (positions and coverage)");
     PositionMap map;
     map.width = spec.width;
     map.height = spec.height;
     map.rgba.resize(std::size_t(map.width) * map.height * 4);
-    if (!input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, map.rgba.data()))
-        throw Error(path + ": cannot read the position map: " + input->geterror());
+    error = input->read(4, map.rgba.data());
+    if (!error.empty()) throw Error(path + ": cannot read the position map: " + error);
     return map;
 }
 
@@ -156,7 +146,7 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     if (!(units_per_position > 0) || !std::isfinite(units_per_position))
         throw Error("solid bake: the position scale must be positive");
     // The output is checked before the work (the bake is written at the end).
-    auto output = create_image_output(path, "the solid map");
+    image_writer(path, "the solid map");
     check_output_path(path, "the solid map");
     const auto texture = make_texture(description);
     const PositionMap map = read_positions(positions_path);
@@ -217,15 +207,13 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     }
     for (auto& worker : pool) worker.join();
 
-    OIIO::ImageSpec spec(map.width, map.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.alpha_channel = 3;
-    spec.attribute("oiio:ColorSpace", "Linear");
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    AtomicOutput file(path);
-    if (!output->open(file.temporary(), spec) || !output->write_image(OIIO::TypeDesc::FLOAT, out.data()) || !output->close())
-        throw Error(path + ": cannot write the solid map: " + output->geterror());
-    file.commit();
+    codec::ImageHeader header;
+    header.width = map.width, header.height = map.height, header.channels = 4;
+    header.alpha_channel = 3;
+    header.set("oiio:ColorSpace", "Linear");
+    header.set("compression", "zip");
+    header.set("Software", "stochtex " STOCHTEX_VERSION);
+    write_image_file(path, header, out.data(), "the solid map");
     return {1, 0, 0};
 }
 

@@ -5,8 +5,7 @@
 #include <stochtex/texture.h>
 #include <stochtex/throughput.h>
 
-#include <OpenImageIO/texture.h>
-
+#include "image/image_codec.h"
 #include "stex/parameter_schema.h"
 
 #include <algorithm>
@@ -138,35 +137,22 @@ std::vector<ThroughputResult> measure_throughput(const TextureDescription& descr
     bake.tile_size = s.tile;
     bake.threads = threads;
     bake_mip_image(description, baked, bake);
-    const OIIO::ustring file(baked);
-    auto lookups = [&](OIIO::TextureSystem& system) {
-        const float texel = 1.0f / float(s.size);
-        run_parallel(threads, s.size, [&](int row) {
-            OIIO::TextureOpt options;
-            options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
-            OIIO::TextureSystem::Perthread* thread = system.get_perthread_info();
-            OIIO::TextureSystem::TextureHandle* handle = system.get_texture_handle(file, thread);
-            float rgb[3];
-            for (int x = 0; x < s.size; ++x)
-                if (!system.texture(handle, thread, options, (x + 0.5f) * texel, (row + 0.5f) * texel, texel, 0, 0, texel, 3,
-                                    rgb))
-                    throw Error("bench: TextureSystem lookup in " + baked + " failed: " + system.geterror());
-        });
+    // OIIO's TextureSystem lives in the OpenImageIO module (image_codec.h).
+    codec::ImageCodec& oiio = codec::oiio_codec("bench: the TextureSystem reference");
+    auto lookups = [&](codec::TextureLookups& system) {
+        const std::string error = system.run(baked, s.size, threads);
+        if (!error.empty()) throw Error("bench: " + error);
         return pixels;
     };
     const std::string lookup_detail =
         "OIIO TextureSystem on the texture baked to a " + std::to_string(s.size) + "² tiled MIP-mapped EXR, one lookup per texel, " +
         "one-texel footprint, " + std::to_string(threads) + " thread(s)";
     results.push_back(timed("baked lookup (cold)", lookup_detail + ", a fresh TextureSystem per run", s.repetitions, [&] {
-        OIIO::TextureSystem* system = OIIO::TextureSystem::create(false);
-        const double n = lookups(*system);
-        OIIO::TextureSystem::destroy(system);
-        return n;
+        return lookups(*oiio.texture_lookups());
     }));
-    OIIO::TextureSystem* system = OIIO::TextureSystem::create(false);
+    const std::unique_ptr<codec::TextureLookups> system = oiio.texture_lookups();
     lookups(*system);
     results.push_back(timed("baked lookup (warm)", lookup_detail + ", tiles cached", s.repetitions, [&] { return lookups(*system); }));
-    OIIO::TextureSystem::destroy(system);
     return results;
 }
 

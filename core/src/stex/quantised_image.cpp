@@ -2,8 +2,7 @@
 
 #include <stochtex/error.h>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "image/png_memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,56 +60,26 @@ std::vector<std::vector<double>> dequantise(const QuantisedImage& image)
 
 std::vector<std::uint8_t> encode_png(const QuantisedImage& image)
 {
-    const OIIO::TypeDesc type = image.bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
-    std::vector<std::uint8_t> narrow;
-    const void* pixels = image.samples.data();
-    if (image.bits == 8) {
-        narrow.assign(image.samples.begin(), image.samples.end());
-        pixels = narrow.data();
-    }
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out) throw Error("PNG encoder unavailable: " + OIIO::geterror());
-    OIIO::ImageSpec spec(image.width, image.height * image.channels, 1, type);
-    // Fixed settings: the same image always encodes to the same bytes (canonical .stex files).
-    spec.attribute("png:compressionLevel", 9);
-    void* proxy = &memory;
-    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    if (!out->open("exemplar.png", spec) || !out->write_image(type, pixels) || !out->close())
-        throw Error("cannot encode PNG: " + out->geterror());
-    return {bytes.begin(), bytes.end()};
+    // The planes stacked, as one grey image (docs/stex-format.md).
+    return codec::encode_grey_png(image.width, image.height * image.channels, image.bits, image.samples.data());
 }
 
 void decode_png(const std::vector<std::uint8_t>& png, QuantisedImage& image)
 {
     static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (png.size() < 8 || !std::equal(signature, signature + 8, png.begin())) throw Error("not a PNG image");
-    OIIO::Filesystem::IOMemReader memory(const_cast<std::uint8_t*>(png.data()), png.size());
-    OIIO::ImageSpec config;
-    void* proxy = &memory;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    auto in = OIIO::ImageInput::open("exemplar.png", &config);
-    if (!in) throw Error("unreadable PNG: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
+    int width = 0, height = 0, channels = 0, stored_bits = 0;
+    std::string error = codec::decode_grey_png(png, width, height, channels, stored_bits, nullptr);
+    if (!error.empty()) throw Error(error);
     const int expected_height = image.height * image.channels;
-    if (spec.width != image.width || spec.height != expected_height || spec.nchannels != 1)
-        throw Error("PNG is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " +
-                    std::to_string(spec.nchannels) + " channel(s); expected " + std::to_string(image.width) + "x" +
+    if (width != image.width || height != expected_height || channels != 1)
+        throw Error("PNG is " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                    std::to_string(channels) + " channel(s); expected " + std::to_string(image.width) + "x" +
                     std::to_string(expected_height) + " grey (the planes stacked)");
-    const int stored_bits = int(spec.format.size()) * 8;
     if (stored_bits != image.bits)
         throw Error("PNG has " + std::to_string(stored_bits) + "-bit samples; bits says " + std::to_string(image.bits));
-    image.samples.assign(std::size_t(image.width) * expected_height, 0);
-    bool ok;
-    if (image.bits == 16) {
-        ok = in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, image.samples.data());
-    } else {
-        std::vector<std::uint8_t> narrow(image.samples.size());
-        ok = in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT8, narrow.data());
-        std::copy(narrow.begin(), narrow.end(), image.samples.begin());
-    }
-    if (!ok) throw Error("truncated or corrupt PNG: " + in->geterror());
+    error = codec::decode_grey_png(png, width, height, channels, stored_bits, &image.samples);
+    if (!error.empty()) throw Error(error);
 }
 
 }  // namespace stochtex

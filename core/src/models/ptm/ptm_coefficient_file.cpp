@@ -5,7 +5,6 @@
 #include <stochtex/error.h>
 #include <stochtex/models/ptm_parameters.h>
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -43,33 +42,34 @@ PtmMaps read_ptm_coefficients(const std::string& path, PtmColour colour, const s
 {
     auto fail = [&](const std::string& problem) -> void { throw Error(what + ": " + problem); };
     if (!fs::is_regular_file(path)) fail("coefficient file '" + path + "' does not exist");
-    auto input = OIIO::ImageInput::open(path);
-    if (!input) fail("cannot read coefficient file '" + path + "': " + OIIO::geterror());
-    const OIIO::ImageSpec spec = input->spec();
+    std::string error;
+    const auto input = codec::open_image(path, error, /*by_name=*/true);
+    if (!input) fail("cannot read coefficient file '" + path + "': " + error);
+    const codec::ImageHeader spec = input->header();
     if (spec.width < 1 || spec.height < 1 || spec.width > max_ptm_side || spec.height > max_ptm_side ||
         (long long)spec.width * spec.height > max_ptm_texels)
         fail("coefficient maps of " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
              " texels exceed the limits (sides 1 … 4096, at most 2^22 texels)");
     // OpenEXR sorts channels by name: map each expected channel to its place in the file.
     const std::vector<std::string> names = ptm_channel_names(colour);
-    if (spec.nchannels != int(names.size()))
-        fail("coefficient file '" + path + "' has " + std::to_string(spec.nchannels) + " channels, a " +
+    if (spec.channels != int(names.size()))
+        fail("coefficient file '" + path + "' has " + std::to_string(spec.channels) + " channels, a " +
              to_string(colour) + " PTM has " + std::to_string(names.size()));
     std::vector<int> file_channel;
     for (const std::string& name : names) {
-        const auto found = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-        if (found == spec.channelnames.end()) fail("coefficient file '" + path + "' has no channel '" + name + "'");
-        file_channel.push_back(int(found - spec.channelnames.begin()));
+        const auto found = std::find(spec.channel_names.begin(), spec.channel_names.end(), name);
+        if (found == spec.channel_names.end()) fail("coefficient file '" + path + "' has no channel '" + name + "'");
+        file_channel.push_back(int(found - spec.channel_names.begin()));
     }
-    std::vector<float> data(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-        fail("cannot read the pixels of '" + path + "': " + input->geterror());
+    std::vector<float> data(std::size_t(spec.width) * spec.height * spec.channels);
+    error = input->read(spec.channels, data.data());
+    if (!error.empty()) fail("cannot read the pixels of '" + path + "': " + error);
     PtmMaps maps;
     maps.colour = colour;
-    maps.coefficients = Image(spec.width, spec.height, spec.nchannels);
+    maps.coefficients = Image(spec.width, spec.height, spec.channels);
     for (std::size_t i = 0; i < maps.coefficients.pixel_count(); ++i)
         for (std::size_t k = 0; k < names.size(); ++k) {
-            const float value = data[i * spec.nchannels + file_channel[k]];
+            const float value = data[i * spec.channels + file_channel[k]];
             if (!std::isfinite(value))
                 fail("coefficient file '" + path + "': texel (" + std::to_string(i % spec.width) + ", " +
                      std::to_string(i / spec.width) + ") channel " + names[k] + " is not finite");
@@ -83,16 +83,15 @@ void write_ptm_coefficients(const std::string& path, const PtmMaps& maps)
     const std::vector<std::string> names = ptm_channel_names(maps.colour);
     if (maps.coefficients.channels != int(names.size()) || maps.width() < 1)
         throw Error(path + ": cannot write empty maps or maps with a wrong channel count");
-    auto output = create_image_output(path, "the coefficient maps");
-    OIIO::ImageSpec spec(maps.width(), maps.height(), int(names.size()), OIIO::TypeDesc::FLOAT);
-    spec.channelnames = names;
-    spec.alpha_channel = -1;
-    spec.attribute("compression", "zip");
-    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    spec.attribute("ImageDescription", std::string("stochtex PTM coefficient maps (") + to_string(maps.colour) +
-                                           ", Legendre basis; docs/stex-format.md)");
+    codec::ImageHeader spec;
+    spec.width = maps.width(), spec.height = maps.height(), spec.channels = int(names.size());
+    spec.channel_names = names;
+    spec.set("compression", "zip");
+    spec.set("Software", "stochtex " STOCHTEX_VERSION);
+    spec.set("ImageDescription", std::string("stochtex PTM coefficient maps (") + to_string(maps.colour) +
+                                     ", Legendre basis; docs/stex-format.md)");
     // A failed write keeps the maps that a .stex beside them already names.
-    write_pixels_atomically(*output, path, spec, maps.coefficients.pixels.data(), "the coefficient maps");
+    write_image_file(path, spec, maps.coefficients.pixels.data(), "the coefficient maps");
 }
 
 }  // namespace stochtex

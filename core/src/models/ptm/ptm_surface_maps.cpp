@@ -14,7 +14,6 @@
 #include "models/ptm/ptm_functions.h"
 #include "image/image_output.h"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -88,14 +87,17 @@ SurfaceMaps estimate_surface_maps(const PtmMaps& maps, NormalEstimator estimator
 void write_normal_map(const std::string& path, const Image& normals)
 {
     if (normals.channels != 3 || normals.empty()) throw Error(path + ": a normal map needs 3 channels");
-    auto output = create_image_output(path, "the normal map");
-    const bool is_float = output->supports("floatpixels") && std::string(output->format_name()) == "openexr";
-    OIIO::ImageSpec spec(normals.width, normals.height, 3, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-    spec.attribute("Software", "stochtex " STOCHTEX_VERSION);
-    spec.attribute("ImageDescription", "tangent-space normal map: 0.5 + 0.5 n, x right, y up (data, not colour)");
+    std::string format;
+    image_writer(path, "the normal map", false, &format);
+    const bool is_float = format == "openexr";
+    codec::ImageHeader spec;
+    spec.width = normals.width, spec.height = normals.height, spec.channels = 3;
+    spec.sample = is_float ? codec::Sample::f32 : codec::Sample::u8;
+    spec.set("Software", "stochtex " STOCHTEX_VERSION);
+    spec.set("ImageDescription", "tangent-space normal map: 0.5 + 0.5 n, x right, y up (data, not colour)");
     std::vector<float> encoded(normals.pixels.size());
     for (std::size_t i = 0; i < encoded.size(); ++i) encoded[i] = std::clamp(0.5f + 0.5f * normals.pixels[i], 0.0f, 1.0f);
-    write_pixels_atomically(*output, path, spec, encoded.data(), "the normal map");
+    write_image_file(path, spec, encoded.data(), "the normal map");
 }
 
 }  // namespace stochtex

@@ -35,19 +35,26 @@ int wrap(int i, int n) { return ((i % n) + n) % n; }
 
 /// from (n samples, given stride) → its projection on the half-resolution spline space,
 /// upsampled back to n samples. This is the part of the noise that survives at half resolution.
-void down_up_sample(const float* from, float* to, int n, int stride)
+/// The line is first copied with its periodic continuation on each side, so the filters index
+/// it directly (no modulo per tap: the tiles are built at every start of a process, and the
+/// 64³ solid tile runs this on 12 288 lines); the sums are the same, in the same order.
+void down_up_sample(const float* from, float* to, int n, int stride, std::vector<float>& padded, std::vector<float>& half)
 {
-    std::vector<float> half(n / 2);
+    padded.resize(std::size_t(n) + 2 * analysis_radius);
+    for (int i = -analysis_radius; i < n + analysis_radius; ++i)
+        padded[std::size_t(i + analysis_radius)] = from[wrap(i, n) * stride];
+    half.resize(std::size_t(n / 2) + 2);
     for (int i = 0; i < n / 2; ++i) {
         float sum = 0;
-        for (int k = 2 * i - analysis_radius; k < 2 * i + analysis_radius; ++k)
-            sum += analysis_filter[k - 2 * i + analysis_radius] * from[wrap(k, n) * stride];
-        half[i] = sum;
+        const float* window = &padded[std::size_t(2 * i)];  // sample 2i − radius
+        for (int t = 0; t < 2 * analysis_radius; ++t) sum += analysis_filter[t] * window[t];
+        half[std::size_t(i)] = sum;
     }
+    half[std::size_t(n / 2)] = half[0];  // the periodic continuation the refinement reads
+    half[std::size_t(n / 2) + 1] = half[1 % (n / 2)];
     for (int i = 0; i < n; ++i) {
         float sum = 0;
-        for (int k = i / 2; k <= i / 2 + 1; ++k)
-            sum += refinement_filter[i - 2 * k + 2] * half[wrap(k, n / 2)];
+        for (int k = i / 2; k <= i / 2 + 1; ++k) sum += refinement_filter[i - 2 * k + 2] * half[std::size_t(k)];
         to[i * stride] = sum;
     }
 }
@@ -68,12 +75,12 @@ std::vector<float> make_coefficients(const int* size, int dims, std::uint64_t se
     for (int axis = 0; axis < dims; ++axis) {
         const std::size_t stride = strides[axis];
         const int n = size[axis];
-        std::vector<float> line(n), filtered(n);
+        std::vector<float> line(n), filtered(n), padded, half;
         for (std::size_t start = 0; start < count; ++start) {
             // Visit each line along `axis` once: starts are the indices whose axis coordinate is 0.
             if ((start / stride) % n != 0) continue;
             for (int i = 0; i < n; ++i) line[i] = smooth[start + i * stride];
-            down_up_sample(line.data(), filtered.data(), n, 1);
+            down_up_sample(line.data(), filtered.data(), n, 1, padded, half);
             for (int i = 0; i < n; ++i) smooth[start + i * stride] = filtered[i];
         }
     }
