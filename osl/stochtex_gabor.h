@@ -8,8 +8,10 @@
 //     octave's fade by the filtered support's area, and - with histogram maps - the variance the
 //     filter removed (gabor_statistics.h) for the Gauss-Hermite histogram filter;
 //   - the sparse convolution over a jittered grid of impulses (gabor_noise.h): the cells, their
-//     impulse positions, frequencies and phases are the core's, bit for bit - SplitMix64 in 16-bit
-//     limbs (stochtex_u64.h) - and the cells visited follow the same ellipse row spans;
+//     impulse positions, frequencies and phases - and, kind oriented, each impulse's choice of
+//     the octave's orientation or an isotropic frequency - are the core's, bit for bit
+//     (SplitMix64 in 16-bit limbs, stochtex_u64.h), and the cells visited follow the same
+//     ellipse row spans;
 //   - the solid noise sliced by the tangent plane (eq. 6), in the frame the core builds.
 // Everything else runs in float where the core uses double: the measured difference is in
 // docs/osl.md. The isotropic retained-variance table (E over the sphere, 97 x 97) is an image
@@ -30,7 +32,7 @@
 // |i| < 2^16 cells, so an impulse's offset from the point, x - (i + f) * side, is as accurate as
 // the core's double (a float side would be off by 1e-4 px at 1500 px, enough to move kernels
 // across the 5 % edge of their support now and then).
-#define STOCHTEX_GABOR_STRIDE 12
+#define STOCHTEX_GABOR_STRIDE 16
 #define STOCHTEX_GABOR_FREQUENCY 0
 #define STOCHTEX_GABOR_BANDWIDTH 1
 #define STOCHTEX_GABOR_RADIUS 2
@@ -41,10 +43,14 @@
 #define STOCHTEX_GABOR_GAIN_2D 7
 #define STOCHTEX_GABOR_GAIN_3D 8
 #define STOCHTEX_GABOR_WEIGHT 9
+// Kind oriented: the share p_k of oriented impulses and their omega / F (x, y, z); 0 otherwise.
+#define STOCHTEX_GABOR_ORIENTED_SHARE 12
+#define STOCHTEX_GABOR_ORIENTATION 13
 // kind: GaborKind's order.
 #define STOCHTEX_GABOR_ISOTROPIC 0
 #define STOCHTEX_GABOR_ANISOTROPIC 1
 #define STOCHTEX_GABOR_HYBRID 2
+#define STOCHTEX_GABOR_ORIENTED 3
 // The filter of one kernel bandwidth: filter[0..2] A (xx, xy, yy), [3..5] A^-1, [6..8] the
 // damping 2 pi^2 A^-1 Sigma_f, [9] |A|^-1/2, [10] 1 when Sigma_f = 0 (point sampling).
 #define STOCHTEX_GABOR_FILTER_SIZE 11
@@ -252,10 +258,29 @@ float stochtex_gabor_phase(int attributes[4], int c)
     return 2.0 * M_PI * float(stochtex_u64_bits(attributes, 10 * c, 10)) / 1024.0;
 }
 
-// GaborNoise::frequency_of: the impulse's frequency (3D).
-void stochtex_gabor_frequency(int kind, float f, float direction[3], float direction_length, float e1[3], float e2[3],
-                              int attributes[4], STOCHTEX_OUT_ARRAY(float) omega[3])
+// Kind oriented: 1 if the impulse of cell `cell` is oriented - its own draw, the top 53 bits of
+// mix64(key + 0x632be59bd9b4e019), below the octave's bound `below` (p_k 2^53, 4 limbs).
+int stochtex_gabor_is_oriented(int cell[4], int below[4])
 {
+    int offset[4] = { 57369, 55732, 58779, 25387 };
+    int t[4];
+    stochtex_u64_add(cell, offset, t);
+    stochtex_mix64(t, t);
+    stochtex_u64_shift_right(t, 11, t);
+    return stochtex_u64_less(t, below);
+}
+
+// GaborNoise::frequency_of: the impulse's frequency (3D). Kind oriented: omega = f * orientation
+// for an oriented impulse (stochtex_gabor_is_oriented), else the isotropic kind's draw.
+void stochtex_gabor_frequency(int kind, float f, float direction[3], float direction_length, float e1[3], float e2[3],
+                              float orientation[3], int below[4], int cell[4], int attributes[4],
+                              STOCHTEX_OUT_ARRAY(float) omega[3])
+{
+    if (kind == STOCHTEX_GABOR_ORIENTED && stochtex_gabor_is_oriented(cell, below)) {
+        for (int i = 0; i < 3; ++i)
+            omega[i] = f * orientation[i];
+        return;
+    }
     if (kind == STOCHTEX_GABOR_ANISOTROPIC) {
         for (int i = 0; i < 3; ++i)
             omega[i] = f * direction[i] / direction_length;
@@ -310,8 +335,8 @@ void stochtex_gabor_kernel(float filter[STOCHTEX_GABOR_FILTER_SIZE], float a, fl
 
 // GaborNoise::eval_2d at (x, y) exemplar pixels; out0..2 the channels' noises (unit variance unfiltered).
 void stochtex_gabor_noise_2d(float x, float y, float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind, float octave[], int k,
-                             int key[], float direction[3], float direction_length, float e1[3], float e2[3], int channels,
-                             STOCHTEX_OUT_ARRAY(float) value[3])
+                             int key[], int oriented_below[], float direction[3], float direction_length, float e1[3],
+                             float e2[3], int channels, STOCHTEX_OUT_ARRAY(float) value[3])
 {
     int o = k * STOCHTEX_GABOR_STRIDE;
     float f = octave[o + STOCHTEX_GABOR_FREQUENCY], a = octave[o + STOCHTEX_GABOR_BANDWIDTH];
@@ -319,9 +344,14 @@ void stochtex_gabor_noise_2d(float x, float y, float filter[STOCHTEX_GABOR_FILTE
     float s_hi = octave[o + STOCHTEX_GABOR_CELL_2D], s_lo = octave[o + STOCHTEX_GABOR_CELL_2D_LO];
     float s = s_hi + s_lo;
     float r2 = radius * radius;
-    int seed[4];
-    for (int l = 0; l < 4; ++l)
+    int seed[4], below[4];
+    for (int l = 0; l < 4; ++l) {
         seed[l] = key[4 * k + l];
+        below[l] = oriented_below[4 * k + l];
+    }
+    float orientation[3];
+    for (int e = 0; e < 3; ++e)
+        orientation[e] = octave[o + STOCHTEX_GABOR_ORIENTATION + e];
     float sum[3] = { 0.0, 0.0, 0.0 };
     float extent_y = radius * sqrt(filter[2]);
     int j0 = int(floor((y - extent_y) / s)), j1 = int(floor((y + extent_y) / s));
@@ -342,7 +372,8 @@ void stochtex_gabor_noise_2d(float x, float y, float filter[STOCHTEX_GABOR_FILTE
                 int attributes[4];
                 float omega[3];
                 stochtex_gabor_attributes(cell, attributes);
-                stochtex_gabor_frequency(kind, f, direction, direction_length, e1, e2, attributes, omega);
+                stochtex_gabor_frequency(kind, f, direction, direction_length, e1, e2, orientation, below, cell, attributes,
+                                         omega);
                 stochtex_gabor_kernel(filter, a, q, dx, dy, 0.0, omega[0], omega[1], 0.0, attributes, channels, sum);
             }
         }
@@ -354,8 +385,9 @@ void stochtex_gabor_noise_2d(float x, float y, float filter[STOCHTEX_GABOR_FILTE
 
 // GaborNoise::eval_sliced: the solid noise at p sliced by the plane (t, b) of normal n.
 void stochtex_gabor_noise_sliced(float p[3], float t[3], float b[3], float n[3], float filter[STOCHTEX_GABOR_FILTER_SIZE],
-                                 int kind, float octave[], int k, int key[], float direction[3], float direction_length,
-                                 float e1[3], float e2[3], int channels, STOCHTEX_OUT_ARRAY(float) value[3])
+                                 int kind, float octave[], int k, int key[], int oriented_below[], float direction[3],
+                                 float direction_length, float e1[3], float e2[3], int channels,
+                                 STOCHTEX_OUT_ARRAY(float) value[3])
 {
     int o = k * STOCHTEX_GABOR_STRIDE;
     float f = octave[o + STOCHTEX_GABOR_FREQUENCY], a = octave[o + STOCHTEX_GABOR_BANDWIDTH];
@@ -363,9 +395,14 @@ void stochtex_gabor_noise_sliced(float p[3], float t[3], float b[3], float n[3],
     float s_hi = octave[o + STOCHTEX_GABOR_CELL_3D], s_lo = octave[o + STOCHTEX_GABOR_CELL_3D_LO];
     float s = s_hi + s_lo;
     float r2 = radius * radius;
-    int seed[4];
-    for (int l = 0; l < 4; ++l)
+    int seed[4], below[4];
+    for (int l = 0; l < 4; ++l) {
         seed[l] = key[4 * k + l];
+        below[l] = oriented_below[4 * k + l];
+    }
+    float orientation[3];
+    for (int e = 0; e < 3; ++e)
+        orientation[e] = octave[o + STOCHTEX_GABOR_ORIENTATION + e];
     float ixx = filter[3], ixy = filter[4], iyy = filter[5];
     // The support: the ellipsoid h^2 + p^T A^-1 p <= r^2; M = n n^T + T A^-1 T^T (texture axes).
     float extent[3];
@@ -409,7 +446,8 @@ void stochtex_gabor_noise_sliced(float p[3], float t[3], float b[3], float n[3],
                     int attributes[4];
                     float omega[3];
                     stochtex_gabor_attributes(cell, attributes);
-                    stochtex_gabor_frequency(kind, f, direction, direction_length, e1, e2, attributes, omega);
+                    stochtex_gabor_frequency(kind, f, direction, direction_length, e1, e2, orientation, below, cell,
+                                             attributes, omega);
                     float st = t[0] * omega[0] + t[1] * omega[1] + t[2] * omega[2];
                     float sb = b[0] * omega[0] + b[1] * omega[1] + b[2] * omega[2];
                     float wn = n[0] * omega[0] + n[1] * omega[1] + n[2] * omega[2];
@@ -456,7 +494,8 @@ float stochtex_sphere_average(string table, int size, float node_step, float alp
     return (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
 }
 
-// gabor_retained_variance: the fraction of the octave's variance the filter keeps in the plane (t, b).
+// gabor_retained_variance: the fraction of the octave's variance the filter keeps in the plane (t, b),
+// for the isotropic, anisotropic (omega / F = direction) and hybrid kinds.
 float stochtex_gabor_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind, float f, float direction[3],
                               float e1[3], float e2[3], float t[3], float b[3], string table, int table_size,
                               float table_step)
@@ -484,13 +523,37 @@ float stochtex_gabor_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind
                                                scale * max(0.0, stochtex_smallest_eigenvalue(dxx, dxy, dyy)));
 }
 
+// Kind oriented: its two populations of impulses mixed by their shares (gabor_statistics.cpp's
+// mixed(): random phases leave no cross terms); the other kinds as stochtex_gabor_retained.
+float stochtex_gabor_octave_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind, float octave[], int o,
+                                     float direction[3], float e1[3], float e2[3], float t[3], float b[3], string table,
+                                     int table_size, float table_step)
+{
+    float f = octave[o + STOCHTEX_GABOR_FREQUENCY];
+    if (kind != STOCHTEX_GABOR_ORIENTED)
+        return stochtex_gabor_retained(filter, kind, f, direction, e1, e2, t, b, table, table_size, table_step);
+    float share = octave[o + STOCHTEX_GABOR_ORIENTED_SHARE];
+    float orientation[3];
+    for (int e = 0; e < 3; ++e)
+        orientation[e] = octave[o + STOCHTEX_GABOR_ORIENTATION + e];
+    float oriented = 0.0, isotropic = 0.0;
+    if (share > 0.0)
+        oriented = stochtex_gabor_retained(filter, STOCHTEX_GABOR_ANISOTROPIC, f, orientation, e1, e2, t, b, table,
+                                           table_size, table_step);
+    if (share < 1.0)
+        isotropic = stochtex_gabor_retained(filter, STOCHTEX_GABOR_ISOTROPIC, f, orientation, e1, e2, t, b, table,
+                                            table_size, table_step);
+    return share * oriented + (1.0 - share) * isotropic;
+}
+
 // ---- The texture -----------------------------------------------------------------------------
 
 // The texture at p (texture units; 2D: p[2] unused) with the footprint's derivatives dpdx, dpdy
 // (texture units per pixel; 2D: (du, dv, 0)) and, solid, the surface normal nrm. Arrays are
-// flattened: octave[k * STRIDE + field], key_2d/key_3d[4 k + limb], knots as in stochtex_colour.h.
+// flattened: octave[k * STRIDE + field], key_2d/key_3d/oriented_below[4 k + limb], knots as in
+// stochtex_colour.h.
 void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dpdy[3], float pixels_per_unit,
-                    int octave_count, float octave[], int key_2d[], int key_3d[], int kind, float direction[3],
+                    int octave_count, float octave[], int key_2d[], int key_3d[], int oriented_below[], int kind, float direction[3],
                     float direction_length, float e1[3], float e2[3], int channels, float sigma_m[],
                     int knot_count[], float knot_z[], float knot_value[], float knot_slope[], float gh_node[],
                     float gh_weight[], float mean[], float basis[], string sphere_table, int sphere_table_size,
@@ -522,9 +585,8 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
         if (tracks) {
             float retained = 0.0;
             if (fade > 0.0)
-                retained = fade * fade * stochtex_gabor_retained(filter, kind, octave[o + STOCHTEX_GABOR_FREQUENCY], direction,
-                                                                 e1, e2, t, bt, sphere_table, sphere_table_size,
-                                                                 sphere_table_step);
+                retained = fade * fade * stochtex_gabor_octave_retained(filter, kind, octave, o, direction, e1, e2, t, bt,
+                                                                        sphere_table, sphere_table_size, sphere_table_step);
             for (int c = 0; c < 3; ++c) {
                 float w = octave[o + STOCHTEX_GABOR_WEIGHT + c];
                 dropped[c] += (1.0 - retained) * w * w;
@@ -534,11 +596,11 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
             continue;
         float value[3];
         if (solid)
-            stochtex_gabor_noise_sliced(q, t, bt, n, filter, kind, octave, k, key_3d, direction, direction_length, e1, e2,
-                                        channels, value);
+            stochtex_gabor_noise_sliced(q, t, bt, n, filter, kind, octave, k, key_3d, oriented_below, direction,
+                                        direction_length, e1, e2, channels, value);
         else
-            stochtex_gabor_noise_2d(q[0], q[1], filter, kind, octave, k, key_2d, direction, direction_length, e1, e2,
-                                    channels, value);
+            stochtex_gabor_noise_2d(q[0], q[1], filter, kind, octave, k, key_2d, oriented_below, direction, direction_length,
+                                    e1, e2, channels, value);
         for (int c = 0; c < 3; ++c)
             kept[c] += fade * octave[o + STOCHTEX_GABOR_WEIGHT + c] * value[channels == 1 ? 0 : c];
     }

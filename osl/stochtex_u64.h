@@ -121,6 +121,36 @@ int stochtex_u64_bits(int a[4], int shift, int count)
     return result;
 }
 
+// a >> n, 0 <= n < 64.
+void stochtex_u64_shift_right(int a[4], int n, STOCHTEX_OUT_ARRAY(int) r[4])
+{
+    int q = n / 16, s = n % 16;
+    int t[4];
+    for (int k = 0; k < 4; ++k) {
+        int shifted = 0;
+        if (k + q < 4)
+            shifted = a[k + q] >> s;
+        if (k + q + 1 < 4)
+            shifted = shifted | ((a[k + q + 1] & ((1 << s) - 1)) << (16 - s));
+        t[k] = shifted;
+    }
+    stochtex_u64_copy(t, r);
+}
+
+// a < b as unsigned 64-bit integers: 1 or 0 (decided by the most significant differing limb;
+// no return inside the loop, which OSL compilers of every age accept).
+int stochtex_u64_less(int a[4], int b[4])
+{
+    int less = 0, decided = 0;
+    for (int k = 3; k >= 0; --k) {
+        if (decided == 0 && a[k] != b[k]) {
+            less = a[k] < b[k] ? 1 : 0;
+            decided = 1;
+        }
+    }
+    return less;
+}
+
 // SplitMix64's output function (Steele et al. 2014), the core's mix64.
 void stochtex_mix64(int a[4], STOCHTEX_OUT_ARRAY(int) r[4])
 {

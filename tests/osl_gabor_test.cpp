@@ -1,8 +1,8 @@
 // The gabor OSL shader (osl/stochtex_gabor.h, docs/osl.md): its 64-bit random draws against the
 // core's bit for bit, its maths compiled as C++ (osl_shim.h) against GaborTexture::eval /
 // eval_solid at thousands of points, point-sampled and filtered (isotropic and anisotropic
-// footprints, 2D and sliced solid, every gabor kind, with and without histogram maps), and oslc /
-// testshade where OSL is installed.
+// footprints, 2D and sliced solid, every gabor kind - the oriented kind's per-impulse choice
+// too - with and without histogram maps), and oslc / testshade where OSL is installed.
 #include "test_support.h"
 
 #include <stochtex/analysis.h>
@@ -12,6 +12,7 @@
 #include <stochtex/models/gabor_parameters.h>
 #include <stochtex/osl/osl_shader.h>
 #include <stochtex/render.h>
+#include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
 
 #include "models/gabor/gabor_noise.h"
@@ -60,6 +61,13 @@ TEST(OslGaborShader, SixtyFourBitArithmeticMatchesNativeIntegers)
         ASSERT_EQ(from_limbs(r), a + b);
         osl_shim::stochtex_u64_xorshift(la, 1 + n % 63, r);
         ASSERT_EQ(from_limbs(r), a ^ (a >> (1 + n % 63)));
+        osl_shim::stochtex_u64_shift_right(la, n % 64, r);
+        ASSERT_EQ(from_limbs(r), a >> (n % 64));
+        // Unsigned order, also between values that differ in one low limb only.
+        const std::uint64_t c = n % 3 == 0 ? a ^ std::uint64_t(n % 65536) : b;
+        int lc[4];
+        to_limbs(c, lc);
+        ASSERT_EQ(osl_shim::stochtex_u64_less(la, lc), int(a < c)) << std::hex << a << " < " << c;
         ASSERT_EQ(osl_shim::stochtex_u64_bits(la, n % 64, 24), int((a >> (n % 64)) & 0xffffff));
         // SplitMix64::next() of state a (numerics/random.h): the core's mix64 after the gamma step.
         int state[4];
@@ -110,7 +118,7 @@ public:
         }
         float r = 0, g = 0, b = 0;
         osl_shim::stochtex_gabor(solid, pp, nn, dx, dy, p.f("pixels_per_unit"), p.n("octave_count"), p.a("octave"),
-                                 p.i("key_2d"), p.i("key_3d"), p.n("kind"), p.a("direction"), p.f("direction_length"),
+                                 p.i("key_2d"), p.i("key_3d"), p.i("oriented_below"), p.n("kind"), p.a("direction"), p.f("direction_length"),
                                  p.a("plane_e1"), p.a("plane_e2"), p.n("channels"), p.a("sigma_m"), p.i("knot_count"),
                                  p.a("knot_z"), p.a("knot_value"), p.a("knot_slope"), p.a("gh_node"), p.a("gh_weight"),
                                  p.a("mean"), p.a("basis"), p.s("sphere_table"), p.n("sphere_table_size"),
@@ -153,10 +161,11 @@ TEST(OslGaborShader, ImpulsesMatchTheCoreBitForBit)
                 for (int c = 0; c < 3; ++c)
                     EXPECT_EQ(osl_shim::stochtex_u64_bits(attributes, 10 * c, 10),
                               int(std::lround(impulses[m].phase[c] * 1024 / (2 * M_PI))));
-                float omega[3];
+                float omega[3], orientation[3] = {0, 0, 0};
+                int below[4] = {0, 0, 0, 0};
                 osl_shim::stochtex_gabor_frequency(shim.p.n("kind"), float(noise.parameters().frequency), shim.p.a("direction"),
                                                    shim.p.f("direction_length"), shim.p.a("plane_e1"), shim.p.a("plane_e2"),
-                                                   attributes, omega);
+                                                   orientation, below, key, attributes, omega);
                 EXPECT_NEAR(omega[0], impulses[m].omega[0], 1e-6 * noise.parameters().frequency);
                 EXPECT_NEAR(omega[1], impulses[m].omega[1], 1e-6 * noise.parameters().frequency);
                 ++compared;
@@ -184,6 +193,92 @@ TEST(OslGaborShader, ImpulsesMatchTheCoreBitForBit)
         }
     }
     EXPECT_GT(compared, 10000);
+}
+
+/// Kind oriented on the concrete photo, with orientations and shares set to cover the range: all
+/// oriented (p = 1), none (p = 0), θ = ±90° and oblique angles, shares between.
+TextureDescription oriented_concrete(HistogramMode histogram)
+{
+    TextureDescription description = concrete(histogram, GaborKind::oriented);
+    GaborParameters& gabor = description.parameters.get<GaborParameters>();
+    const double degrees[] = {-90, -53.5, 0, 17.25, 64, 90}, shares[] = {1, 0.62, 0, 0.35, 0.9, 0.2};
+    for (std::size_t k = 0; k < gabor.frequencies.size(); ++k) {
+        gabor.orientations[k] = degrees[k % 6];
+        gabor.oriented_fractions[k] = shares[k % 6];
+    }
+    validate(description, "oriented concrete");
+    return description;
+}
+
+TEST(OslGaborShader, OrientedImpulsesMatchTheCoreBitForBit)
+{
+    // Each impulse's frequency, hence its oriented-or-isotropic draw, against the core's impulses
+    // (2D: projected, solid: 3D). A wrong draw gives an unrelated frequency, ~F off.
+    const TextureDescription description = oriented_concrete(HistogramMode::off);
+    ASSERT_EQ(description.parameters.get<GaborParameters>().kind, GaborKind::oriented);
+    GaborShim shim(description, test::temp_dir("oslgaborientedbits"));
+    const int* below_all = shim.p.i("oriented_below");
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> position(-2000.0, 2000.0);
+    for (std::size_t k = 0; k < 6; ++k) {
+        const GaborNoise noise(gabor_octave(description, k));
+        const double f = noise.parameters().frequency;
+        int key_2d[4], key_3d[4], below[4];
+        for (int l = 0; l < 4; ++l)
+            key_2d[l] = shim.p.i("key_2d")[4 * k + l], key_3d[l] = shim.p.i("key_3d")[4 * k + l], below[l] = below_all[4 * k + l];
+        EXPECT_EQ(from_limbs(below), noise.oriented_bound()) << k;
+        float orientation[3];
+        for (int e = 0; e < 3; ++e) orientation[e] = shim.p.a("octave")[k * STOCHTEX_GABOR_STRIDE + STOCHTEX_GABOR_ORIENTATION + e];
+        const double cell = noise.cell_size_2d()[0], cell_3d = noise.cell_size_3d(), r = noise.radius();
+        int oriented = 0, total = 0;
+        for (int n = 0; n < 40; ++n) {
+            const double x = position(rng), y = position(rng), z = position(rng);
+            const auto impulses = noise.impulses_near_2d(x, y);
+            const int i0 = int(std::floor((x - r) / cell)), i1 = int(std::floor((x + r) / cell));
+            const int j0 = int(std::floor((y - r) / cell));
+            for (std::size_t m = 0; m < impulses.size(); ++m) {
+                const int i = i0 + int(m % std::size_t(i1 - i0 + 1)), j = j0 + int(m / std::size_t(i1 - i0 + 1));
+                int key[4], attributes[4];
+                osl_shim::stochtex_gabor_cell_key(key_2d, 2, i, j, 0, key);
+                osl_shim::stochtex_gabor_attributes(key, attributes);
+                float omega[3];
+                osl_shim::stochtex_gabor_frequency(shim.p.n("kind"), float(f), shim.p.a("direction"), shim.p.f("direction_length"),
+                                                   shim.p.a("plane_e1"), shim.p.a("plane_e2"), orientation, below, key,
+                                                   attributes, omega);
+                ASSERT_NEAR(omega[0], impulses[m].omega[0], 1e-6 * f) << "octave " << k << " cell " << i << ", " << j;
+                ASSERT_NEAR(omega[1], impulses[m].omega[1], 1e-6 * f) << "octave " << k << " cell " << i << ", " << j;
+                oriented += osl_shim::stochtex_gabor_is_oriented(key, below);
+                ++total;
+            }
+            const auto solid = noise.impulses_near_3d({x, y, z});
+            int lo[3], count[3];
+            const double p3[3] = {x, y, z};
+            for (int e = 0; e < 3; ++e) {
+                lo[e] = int(std::floor((p3[e] - r) / cell_3d));
+                count[e] = int(std::floor((p3[e] + r) / cell_3d)) - lo[e] + 1;
+            }
+            ASSERT_EQ(solid.size(), std::size_t(count[0] * count[1] * count[2]));
+            for (std::size_t m = 0; m < solid.size(); ++m) {
+                const int i = lo[0] + int(m % count[0]), j = lo[1] + int(m / count[0] % count[1]),
+                          kk = lo[2] + int(m / (count[0] * count[1]));
+                int key[4], attributes[4];
+                osl_shim::stochtex_gabor_cell_key(key_3d, 3, i, j, kk, key);
+                osl_shim::stochtex_gabor_attributes(key, attributes);
+                float omega[3];
+                osl_shim::stochtex_gabor_frequency(shim.p.n("kind"), float(f), shim.p.a("direction"), shim.p.f("direction_length"),
+                                                   shim.p.a("plane_e1"), shim.p.a("plane_e2"), orientation, below, key,
+                                                   attributes, omega);
+                for (int e = 0; e < 3; ++e) ASSERT_NEAR(omega[e], solid[m].omega[e], 1e-6 * f) << "octave " << k << " axis " << e;
+                oriented += osl_shim::stochtex_gabor_is_oriented(key, below);
+                ++total;
+            }
+        }
+        // The draws' share is the octave's p (binomial: 4 σ bounds), exactly 0 and 1 at the ends.
+        const double p = description.parameters.get<GaborParameters>().oriented_fractions[k];
+        const double share = double(oriented) / total, bound = 4 * std::sqrt(p * (1 - p) / total);
+        std::printf("octave %zu: p %.2f, %d of %d impulses oriented (%.4f)\n", k, p, oriented, total, share);
+        EXPECT_NEAR(share, p, bound + 1e-12) << k;
+    }
 }
 
 // ---- The shader against the core ----------------------------------------------------------------
@@ -315,6 +410,29 @@ TEST(OslGaborShader, AnisotropicAndHybridKindsMatchCore)
         expect_agreement(compare(description, false, 150, label));
         expect_agreement(compare(description, true, 150, label));
     }
+}
+
+TEST(OslGaborShader, OrientedKindMatchesCore)
+{
+    const TextureDescription description = oriented_concrete(HistogramMode::on);
+    expect_agreement(compare(description, false, 250, "oriented, histograms"));
+    expect_agreement(compare(description, true, 250, "oriented, histograms"));
+}
+
+TEST(OslGaborShader, OrientedPhotoDefaultAnalysisMatchesCore)
+{
+    // What `stex analyze --model gabor` now writes for an oriented photo: --gabor-kind auto gives
+    // kind oriented on the sand dunes (ripples oriented, the finest grain isotropic).
+    const std::string path = test::shared_exemplar("sand_dunes.png");
+    if (path.empty()) GTEST_SKIP() << "../shared/exemplars/sand_dunes.png missing";
+    AnalysisOptions options;
+    options.model = "gabor";
+    options.histogram = HistogramMode::on;
+    options.max_bands = 6;
+    const TextureDescription description = analyze(read_image_linear(path), options);
+    ASSERT_EQ(description.parameters.get<GaborParameters>().kind, GaborKind::oriented);
+    expect_agreement(compare(description, false, 150, "sand dunes auto"));
+    expect_agreement(compare(description, true, 150, "sand dunes auto"));
 }
 
 TEST(OslGaborShader, RgbSharedColourModeMatchesCore)

@@ -22,7 +22,7 @@ namespace {
 // Array sizes of the templates' parameters (osl/stochtex_*.h: STOCHTEX_MAX_BANDS, _MAX_KNOTS,
 // _GH_COUNT, STOCHTEX_GABOR_MAX_OCTAVES, _STRIDE).
 constexpr int max_bands = 24, max_knots = 64, gh_count = 12;
-constexpr int max_octaves = 24, octave_stride = 12;
+constexpr int max_octaves = 24, octave_stride = 16;
 constexpr int atlas_per_row = 8;  // 64 slices of the 3D tile as 8 × 8
 constexpr int moment_channels = 9;
 
@@ -204,29 +204,36 @@ std::string gabor_shader(const TextureDescription& description, const OslShaderO
     if (data.octaves.size() > std::size_t(max_octaves)) throw Error("OSL shader: more than 24 octaves");
     const GaborSphereTable table = gabor_sphere_table();
     std::vector<double> octave(std::size_t(max_octaves) * octave_stride, 0.0);
-    std::vector<int> key_2d, key_3d;
+    std::vector<int> key_2d, key_3d, oriented_below;
     for (std::size_t k = 0; k < data.octaves.size(); ++k) {
         const GaborShaderOctave& o = data.octaves[k];
         double cell_2d_hi = 0, cell_2d_lo = 0, cell_3d_hi = 0, cell_3d_lo = 0;
         split_significant_bits(o.cell_2d, 8, cell_2d_hi, cell_2d_lo);
         split_significant_bits(o.cell_3d, 8, cell_3d_hi, cell_3d_lo);
-        const double fields[octave_stride] = {o.frequency, o.bandwidth,  o.radius,  cell_2d_hi, cell_2d_lo,  cell_3d_hi,
-                                              cell_3d_lo,  o.gain_2d,    o.gain_3d, o.weight[0], o.weight[1], o.weight[2]};
+        const double fields[octave_stride] = {o.frequency,          o.bandwidth,          o.radius,
+                                              cell_2d_hi,           cell_2d_lo,           cell_3d_hi,
+                                              cell_3d_lo,           o.gain_2d,            o.gain_3d,
+                                              o.weight[0],          o.weight[1],          o.weight[2],
+                                              o.oriented_fraction,  o.orientation[0],     o.orientation[1],
+                                              o.orientation[2]};
         for (int f = 0; f < octave_stride; ++f) octave[k * octave_stride + f] = fields[f];
         append_limbs(key_2d, o.key_2d);
         append_limbs(key_3d, o.key_3d);
+        append_limbs(oriented_below, o.oriented_below);
     }
     key_2d.resize(4 * max_octaves, 0);
     key_3d.resize(4 * max_octaves, 0);
+    oriented_below.resize(4 * max_octaves, 0);
     ParameterBlock block;
     block.add("string sphere_table = " + quoted(options.images.sphere_table));
     block.add("int sphere_table_size = " + std::to_string(table.size));
     block.add("float sphere_table_step = " + number(table.step));
     block.add("float pixels_per_unit = " + number(data.pixels_per_unit));
     block.add("int octave_count = " + std::to_string(data.octaves.size()));
-    block.add("float octave[288] = " + array(octave, octave.size()));
+    block.add("float octave[384] = " + array(octave, octave.size()));
     block.add_int_array("key_2d", key_2d);
     block.add_int_array("key_3d", key_3d);
+    block.add_int_array("oriented_below", oriented_below);
     block.add("int kind = " + std::to_string(data.kind));
     block.add("float direction[3] = " + array({data.direction.begin(), data.direction.end()}, 3));
     block.add("float direction_length = " + number(data.direction_length));

@@ -23,11 +23,16 @@ struct GaborShaderOctave {
     double gain_2d = 1, gain_3d = 1;      ///< 1 / σ of the raw kernel sums
     std::array<double, 3> weight{};       ///< per decorrelated channel
     std::uint64_t key_2d = 0, key_3d = 0;  ///< the seed, mixed: cell (i, j[, k]) has key + i·step_i + …
+    /// Kind oriented (0 otherwise): the share p_k of oriented impulses, their ω / F, and the bound
+    /// p_k·2^53 an impulse's 53-bit draw must be below to be oriented (GaborNoise::oriented_bound).
+    double oriented_fraction = 0;
+    std::array<double, 3> orientation{0, 0, 0};
+    std::uint64_t oriented_below = 0;
 };
 
 struct GaborShaderData {
     double pixels_per_unit = 0;
-    int kind = 0;  ///< GaborKind: 0 isotropic, 1 anisotropic, 2 hybrid
+    int kind = 0;  ///< GaborKind: 0 isotropic, 1 anisotropic, 2 hybrid, 3 oriented
     std::array<double, 3> direction{0, 0, 1};  ///< as stored (anisotropic ω = F · direction / length)
     double direction_length = 1;
     std::array<double, 3> plane_e1{1, 0, 0}, plane_e2{0, 1, 0};  ///< hybrid: the plane of ω

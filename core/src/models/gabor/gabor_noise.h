@@ -110,6 +110,8 @@ public:
     double gain_3d() const { return gain_3d_; }
     const Vec3& plane_e1() const { return plane_e1_; }
     const Vec3& plane_e2() const { return plane_e2_; }
+    /// Oriented kind: an impulse is oriented when its 53-bit draw is below this (p·2^53); else 0.
+    std::uint64_t oriented_bound() const { return oriented_below_; }
 
 private:
     template <bool Solid>

@@ -16,10 +16,6 @@ GaborShaderData gabor_shader_data(const TextureDescription& description)
         throw Error("model '" + description.model + "' has no gabor shader data (only the gabor model)");
     validate(description, "texture");
     const GaborParameters& gabor = description.parameters.get<GaborParameters>();
-    // The shader (osl/stochtex_gabor.h) draws isotropic, anisotropic and hybrid frequencies only.
-    if (gabor.kind == GaborKind::oriented)
-        throw Error("gabor kind 'oriented' (per-octave orientation) has no shader export yet: analyse with "
-                    "--gabor-kind isotropic or anisotropic for OSL");
     GaborShaderData data;
     data.pixels_per_unit = description.pixels_per_unit;
     data.kind = int(gabor.kind);
@@ -46,6 +42,13 @@ GaborShaderData gabor_shader_data(const TextureDescription& description)
         for (int c = 0; c < 3; ++c) octave.weight[c] = gabor.weights[c][k];
         octave.key_2d = noise.key_2d();
         octave.key_3d = noise.key_3d();
+        if (gabor.kind == GaborKind::oriented) {
+            octave.oriented_fraction = p.oriented_fraction;
+            // ω = F · direction / |direction|, as GaborNoise's constructor forms it.
+            const double length = std::sqrt(dot3(p.direction, p.direction));
+            for (int e = 0; e < 3; ++e) octave.orientation[e] = p.direction[e] / length;
+            octave.oriented_below = noise.oriented_bound();
+        }
         data.octaves.push_back(octave);
     }
     for (int c = 0; c < 3; ++c) data.sigma_m[c] = gabor_channel_sigma(gabor.weights[c]);
