@@ -57,7 +57,7 @@ PY
     rows+=("${row[@]}")
 done
 if [ -n "$sheet" ]; then
-    oiiotool "${rows[@]}" --mosaic:pad=4 5x$(( ${#rows[@]} / 5 )) --ch R,G,B -o "$sheet"
+    oiiotool --nosoftwareattrib "${rows[@]}" --mosaic:pad=4 5x$(( ${#rows[@]} / 5 )) --ch R,G,B --compression jpeg:85 -o "$sheet"
     echo
     echo "contact sheet: $sheet"
 fi
