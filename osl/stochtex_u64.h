@@ -91,36 +91,6 @@ void stochtex_u64_mul(int a[4], int b[4], STOCHTEX_OUT_ARRAY(int) r[4])
     stochtex_u64_copy(t, r);
 }
 
-// a ^ (a >> n), 0 < n < 64: SplitMix64's xorshift step.
-void stochtex_u64_xorshift(int a[4], int n, STOCHTEX_OUT_ARRAY(int) r[4])
-{
-    int q = n / 16, s = n % 16;
-    int t[4];
-    for (int k = 0; k < 4; ++k) {
-        int shifted = 0;
-        if (k + q < 4)
-            shifted = a[k + q] >> s;
-        if (k + q + 1 < 4)
-            shifted = shifted | ((a[k + q + 1] & ((1 << s) - 1)) << (16 - s));
-        t[k] = a[k] ^ shifted;
-    }
-    stochtex_u64_copy(t, r);
-}
-
-// (a >> shift) & (2^count - 1), count <= 24: as an int, exactly convertible to float.
-int stochtex_u64_bits(int a[4], int shift, int count)
-{
-    int result = 0, got = 0, position = shift;
-    while (got < count && position < 64) {
-        int limb = position / 16, offset = position % 16;
-        int take = stochtex_min_int(16 - offset, count - got);
-        result += ((a[limb] >> offset) & ((1 << take) - 1)) << got;
-        got += take;
-        position += take;
-    }
-    return result;
-}
-
 // a >> n, 0 <= n < 64.
 void stochtex_u64_shift_right(int a[4], int n, STOCHTEX_OUT_ARRAY(int) r[4])
 {
@@ -135,6 +105,28 @@ void stochtex_u64_shift_right(int a[4], int n, STOCHTEX_OUT_ARRAY(int) r[4])
         t[k] = shifted;
     }
     stochtex_u64_copy(t, r);
+}
+
+// a ^ (a >> n), 0 < n < 64: SplitMix64's xorshift step.
+void stochtex_u64_xorshift(int a[4], int n, STOCHTEX_OUT_ARRAY(int) r[4])
+{
+    int shifted[4];
+    stochtex_u64_shift_right(a, n, shifted);
+    stochtex_u64_xor(a, shifted, r);
+}
+
+// (a >> shift) & (2^count - 1), count <= 24: as an int, exactly convertible to float.
+int stochtex_u64_bits(int a[4], int shift, int count)
+{
+    int result = 0, got = 0, position = shift;
+    while (got < count && position < 64) {
+        int limb = position / 16, offset = position % 16;
+        int take = stochtex_min_int(16 - offset, count - got);
+        result += ((a[limb] >> offset) & ((1 << take) - 1)) << got;
+        got += take;
+        position += take;
+    }
+    return result;
 }
 
 // a < b as unsigned 64-bit integers: 1 or 0 (decided by the most significant differing limb;
