@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace stochtex {
 
@@ -72,11 +71,7 @@ RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& 
     // Mean, σ and histogram at once: each channel's W1 to the whole photo's, in its σ (the
     // decorrelated channels are uncorrelated over the photo; a crop's own correlation shows in
     // the channels' distributions of the rendered colours, which this sees through each axis).
-    struct Scored {
-        CropOrigin origin;
-        double w1_term = 0, spectrum_term = 0, total = 0;
-    };
-    std::vector<Scored> scored;
+    std::vector<RepresentativeCrop> scored;
     const auto positions = [](int free, int count) {
         std::vector<int> result;
         for (int i = 0; i < count; ++i) result.push_back(count == 1 ? free / 2 : int(std::lround(double(free) * i / (count - 1))));
@@ -94,22 +89,20 @@ RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& 
                 w1 = std::max(w1, wasserstein1_of_sorted(sorted_sample(channels[c], width, origin.x, origin.y, crop_width,
                                                                        crop_height, crop_step),
                                                          whole[c]) / sigma[c]);
-        scored.push_back({origin, w1 / targets.w1_sigma, 0, 0});
+        scored.push_back({origin, w1 / targets.w1_sigma, 0});
     }
     // Then the spectrum of the main channel (the first: PCA's largest variance) for the best few,
     // each term in units of its fidelity target, as the automatic model choice weighs them.
-    std::stable_sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.w1_term < b.w1_term; });
+    std::stable_sort(scored.begin(), scored.end(), [](const RepresentativeCrop& a, const RepresentativeCrop& b) { return a.w1_term < b.w1_term; });
     scored.resize(std::min<std::size_t>(scored.size(), crops_with_spectrum_compared));
     const RadialPsd whole_psd = radial_psd(channels[0], width, height);
-    for (Scored& s : scored) {
+    for (RepresentativeCrop& s : scored) {
         const RadialPsd crop_psd = radial_psd(region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
                                               crop_width, crop_height);
         s.spectrum_term = log_psd_distance_db(crop_psd, whole_psd) / targets.radial_log_psd_db;
-        s.total = s.w1_term + s.spectrum_term;
     }
-    const Scored& best =
-        *std::min_element(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return a.total < b.total; });
-    return {best.origin, best.w1_term, best.spectrum_term};
+    return *std::min_element(scored.begin(), scored.end(),
+                             [](const RepresentativeCrop& a, const RepresentativeCrop& b) { return a.total() < b.total(); });
 }
 
 namespace {
@@ -125,18 +118,17 @@ std::array<int, 2> crop_sides(int width, int height, int side)
 
 }  // namespace
 
-std::array<int, 2> automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height)
+SizedCrop automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height)
 {
-    std::array<int, 2> chosen{};
-    double chosen_total = std::numeric_limits<double>::infinity();
+    SizedCrop chosen;
     for (int side : automatic_exemplar_sides) {
         // Past the first, a side is tried only where the photo holds it twice along each axis:
         // an exemplar as large as its photo is a copy, not a sample, and always "representative".
         if (side != automatic_exemplar_sides[0] && 2 * side > std::min(width, height)) break;
         const std::array<int, 2> sides = crop_sides(width, height, side);
-        const RepresentativeCrop crop = representative_crop(channels, width, height, sides[0], sides[1]);
-        if (crop.representative()) return sides;  // the smallest that stands for the photo
-        if (crop.w1_term + crop.spectrum_term < chosen_total) chosen = sides, chosen_total = crop.w1_term + crop.spectrum_term;
+        const SizedCrop candidate{sides[0], sides[1], representative_crop(channels, width, height, sides[0], sides[1])};
+        if (candidate.crop.representative()) return candidate;  // the smallest that stands for the photo
+        if (chosen.width == 0 || candidate.crop.total() < chosen.crop.total()) chosen = candidate;
     }
     return chosen;  // none meets both targets: the closest
 }
@@ -164,9 +156,11 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
     if (sides[0] < min_tiling_exemplar_side || sides[1] < min_tiling_exemplar_side)
         throw Error("image is " + std::to_string(width) + "x" + std::to_string(height) + ", too small for a tiling exemplar (at least " +
                     std::to_string(min_tiling_exemplar_side) + "x" + std::to_string(min_tiling_exemplar_side) + ")");
-    const auto [crop_width, crop_height] =
-        max_side == automatic_exemplar_side ? automatic_exemplar_crop(channels, width, height) : sides;
-    const CropOrigin origin = representative_crop(channels, width, height, crop_width, crop_height).origin;
+    const SizedCrop chosen = max_side == automatic_exemplar_side
+                                 ? automatic_exemplar_crop(channels, width, height)
+                                 : SizedCrop{sides[0], sides[1], representative_crop(channels, width, height, sides[0], sides[1])};
+    const int crop_width = chosen.width, crop_height = chosen.height;
+    const CropOrigin origin = chosen.crop.origin;
     std::vector<std::vector<float>> planes;
     for (int c = 0; c < 3; ++c) {
         std::vector<float>& plane = planes.emplace_back(periodic_crop(channels[c], width, height, crop_width, crop_height, origin));

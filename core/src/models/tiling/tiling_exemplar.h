@@ -27,6 +27,7 @@ struct RepresentativeCrop {
     double w1_term = 0, spectrum_term = 0;
     /// Both on target: its statistics are the photo's to within what a synthesis is asked for.
     bool representative() const { return w1_term <= 1 && spectrum_term <= 1; }
+    double total() const { return w1_term + spectrum_term; }
 };
 
 /// The crop_width × crop_height crop of the decorrelated channels that best stands for the whole
@@ -44,7 +45,11 @@ constexpr int automatic_exemplar_side = 0;
 /// targets; where none is, the closest. A photo whose large-scale variation a 256² crop misses
 /// (karst rock's plates) gets the larger exemplar it needs, one a 256² crop serves keeps its
 /// 4× smaller file.
-std::array<int, 2> automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height);
+struct SizedCrop {
+    int width = 0, height = 0;
+    RepresentativeCrop crop;
+};
+SizedCrop automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height);
 
 /// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
 /// (Moisan's periodic component, which keeps the crop's mean).
