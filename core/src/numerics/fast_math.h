@@ -9,31 +9,6 @@
 
 namespace stochtex {
 
-/// e^x for x in [−87, 0] (callers clamp: a clamp here, a comparison, would keep the loop scalar).
-inline float fast_exp(float x)
-{
-    const float y = x * 1.44269504f;  // log2(e)·x
-    // Round to nearest by adding 1.5·2^23: the sum's low mantissa bits are then the integer
-    // (read from the bits: a float→int conversion may trap, which keeps GCC from vectorising).
-    const float shifted = y + 12582912.0f;
-    const float rounded = shifted - 12582912.0f;
-    const float f = y - rounded;  // [−½, ½]
-    // 2^f = e^(f ln 2), Taylor to degree 6: error < 1e-7 on [−½, ½].
-    float p = 1.5403530e-4f;
-    p = p * f + 1.3333558e-3f;
-    p = p * f + 9.6181291e-3f;
-    p = p * f + 5.5504109e-2f;
-    p = p * f + 2.4022651e-1f;
-    p = p * f + 6.9314718e-1f;
-    p = p * f + 1.0f;
-    std::int32_t integer;
-    std::memcpy(&integer, &shifted, sizeof integer);
-    const std::int32_t bits = (integer - 0x4b400000 + 127) << 23;
-    float scale;
-    std::memcpy(&scale, &bits, sizeof scale);
-    return p * scale;
-}
-
 /// sin(2π·turns) and cos(2π·turns), for |turns| < 2^20.
 inline void fast_sincos_turns(float turns, float& sine, float& cosine)
 {

@@ -11,60 +11,14 @@
 #include <cmath>
 
 #include "models/gabor/gabor_raster_kernels.h"
+#include "numerics/fast_math-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::gabor_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// e^x for x in [−87, 0]: numerics/fast_math.h's polynomial (relative error 2e-7), lane-wise.
-template <class DF, class V>
-HWY_INLINE V FastExp(DF df, V x)
-{
-    const hn::RebindToSigned<DF> di;
-    const auto y = hn::Mul(x, hn::Set(df, 1.44269504f));
-    const auto shifted = hn::Add(y, hn::Set(df, 12582912.0f));  // round to nearest: 1.5·2^23
-    const auto rounded = hn::Sub(shifted, hn::Set(df, 12582912.0f));
-    const auto f = hn::Sub(y, rounded);
-    auto p = hn::Set(df, 1.5403530e-4f);
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 1.3333558e-3f));
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 9.6181291e-3f));
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 5.5504109e-2f));
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 2.4022651e-1f));
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 6.9314718e-1f));
-    p = hn::Add(hn::Mul(p, f), hn::Set(df, 1.0f));
-    const auto bits = hn::ShiftLeft<23>(hn::Sub(hn::BitCast(di, shifted), hn::Set(di, 0x4b400000 - 127)));
-    return hn::Mul(p, hn::BitCast(df, bits));
-}
-
-/// sin(2π·turns), cos(2π·turns) for |turns| < 2^20: fast_math.h's polynomials (absolute error
-/// 3e-7): the nearest quarter turn, the remainder in [−π/4, π/4], a rotation by the quadrant.
-template <class DF, class V>
-HWY_INLINE void FastSinCosTurns(DF df, V turns, V& sine, V& cosine)
-{
-    const hn::RebindToUnsigned<DF> du;
-    const auto shifted = hn::Add(hn::Mul(turns, hn::Set(df, 4.0f)), hn::Set(df, 12582912.0f));
-    const auto q = hn::Sub(shifted, hn::Set(df, 12582912.0f));
-    const auto x = hn::Mul(hn::Sub(turns, hn::Mul(q, hn::Set(df, 0.25f))), hn::Set(df, 6.28318531f));
-    const auto x2 = hn::Mul(x, x);
-    auto s = hn::Add(hn::Set(df, -1.9841270e-4f), hn::Mul(x2, hn::Set(df, 2.7557319e-6f)));
-    s = hn::Add(hn::Set(df, 8.3333333e-3f), hn::Mul(x2, s));
-    s = hn::Add(hn::Set(df, -1.6666667e-1f), hn::Mul(x2, s));
-    s = hn::Mul(x, hn::Add(hn::Set(df, 1.0f), hn::Mul(x2, s)));
-    auto c = hn::Add(hn::Set(df, -1.3888889e-3f), hn::Mul(x2, hn::Set(df, 2.4801587e-5f)));
-    c = hn::Add(hn::Set(df, 4.1666667e-2f), hn::Mul(x2, c));
-    c = hn::Add(hn::Set(df, -0.5f), hn::Mul(x2, c));
-    c = hn::Add(hn::Set(df, 1.0f), hn::Mul(x2, c));
-    // Odd quadrants swap sine and cosine; quadrants 2, 3 negate the sine, 1, 2 the cosine.
-    const auto quadrant = hn::BitCast(du, shifted);
-    const auto one = hn::Set(du, 1u), two = hn::Set(du, 2u);
-    const auto swap = hn::Eq(hn::And(quadrant, one), one);
-    const auto s_bits = hn::BitCast(du, s), c_bits = hn::BitCast(du, c);
-    const auto sine_bits = hn::Xor(hn::IfThenElse(swap, c_bits, s_bits), hn::ShiftLeft<30>(hn::And(quadrant, two)));
-    const auto cosine_bits =
-        hn::Xor(hn::IfThenElse(swap, s_bits, c_bits), hn::ShiftLeft<30>(hn::And(hn::Add(quadrant, one), two)));
-    sine = hn::BitCast(df, sine_bits);
-    cosine = hn::BitCast(df, cosine_bits);
-}
+using fast_math::HWY_NAMESPACE::FastExp;
+using fast_math::HWY_NAMESPACE::FastSinCosTurns;
 
 template <class DF>
 struct KernelAt {
