@@ -93,6 +93,19 @@ TEST(LrpWindow, SpectralSpreadIsTheNotesErosionAndFootprintRadius)
     EXPECT_NEAR(two, 0.41, 0.01);
 }
 
+TEST(LrpWindow, SpreadSeedIsTheComputedValue)
+{
+    // lrp_window_spread_2d's cache starts with the value of 0.75, so that a texture does not
+    // integrate the transform at start-up: the literal must be what the integration gives, bit
+    // for bit (a change of the window or of the quadrature must change the seed too). And the
+    // computed path itself must not change: 0.41197104276369917 is the value before the window
+    // values at the quadrature nodes were tabulated.
+    EXPECT_EQ(lrp_window_spread_2d(0.75), lrp_window_spread_2d_computed(0.75));
+    EXPECT_EQ(lrp_window_spread_2d_computed(0.75), 0x1.a5dbbcae46c39p-2);
+    // Another fraction goes through the same computation and the cache.
+    EXPECT_EQ(lrp_window_spread_2d(0.5), lrp_window_spread_2d_computed(0.5));
+}
+
 TEST(LrpNoise, NormalisedWindowsMakeTheVarianceStationary)
 {
     // Variance vs position within a lattice cell, over many cells (independent draws): the plain

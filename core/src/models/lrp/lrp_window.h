@@ -31,6 +31,8 @@ double lrp_window_radial_energy();
 /// numerically once per fraction; divide by the spacing Δ for cycles per pixel.
 double lrp_window_spread_1d(double fraction);
 double lrp_window_spread_2d(double fraction);
+/// lrp_window_spread_2d without the cache (and its seed): the transform integrated each call.
+double lrp_window_spread_2d_computed(double fraction);
 
 /// w as a function of y² on [0, 2.25], linearly interpolated from a table (max error < 1e-4).
 class LrpWindowTable {
