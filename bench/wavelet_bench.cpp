@@ -9,6 +9,9 @@
 //                    eval_solid_region, vectorised), path:point the scalar reference in the same
 //                    run (Texture's default loop over eval() / eval_solid(), one pixel at a time);
 //                    rates from CPU time, so they hold on a loaded machine. Values are identical.
+//   Points3D/...     512² scattered surface points (a position-map bake of a sphere), each with its
+//                    own footprint: path:batch is Texture::eval_solid_points (vectorised), path:point
+//                    the scalar loop over eval_solid(), calling thread, CPU time. Values are identical.
 //   Ref/Bilinear...  a plain bilinear lookup of a baked 512² RGB float image (what a baked texture costs)
 //   Ref/Perlin3D...  libnoise 3D Perlin, 3 evaluations per pixel (one per colour channel), as many
 //                    octaves as the texture has bands (only when libnoise-dev is installed)
@@ -243,6 +246,54 @@ void bm_raster(benchmark::State& state, const Model* model, bool solid, bool sim
                    ", calling thread");
 }
 
+// Scattered surface points, what a position-map bake evaluates (stex bake --positions, the
+// Blender add-on's solid route): a 512² map of a unit sphere's upper half seen from above, scaled
+// to the photo's texel, each point's derivatives those of its texel. path:batch is the model's
+// eval_solid_points (vectorised), path:point the scalar reference (Texture's default loop over
+// eval_solid()), one 512-point row per call as bake.cpp does; calling thread.
+std::vector<stochtex::SurfacePoint> sphere_points(const Model& model)
+{
+    const double radius = 0.5 * raster_size / model.description.pixels_per_unit;  // texture units
+    const double texel = 2 * radius / raster_size;
+    std::vector<stochtex::SurfacePoint> points;
+    for (int y = 0; y < raster_size; ++y)
+        for (int x = 0; x < raster_size; ++x) {
+            const double u = (x + 0.5) * texel - radius, v = (y + 0.5) * texel - radius;
+            const double r2 = std::min(u * u + v * v, 0.999 * radius * radius);
+            const double h = std::sqrt(radius * radius - r2);
+            stochtex::SurfacePoint point;
+            point.p = {u, v, h};
+            // dP/dx, dP/dy of the height field h(u, v): (texel, 0, −u/h·texel), (0, texel, −v/h·texel).
+            point.dpdx = {texel, 0, -u / h * texel};
+            point.dpdy = {0, texel, -v / h * texel};
+            point.n = {u / radius, v / radius, h / radius};
+            points.push_back(point);
+        }
+    return points;
+}
+
+void bm_surface_points(benchmark::State& state, const Model* model, bool batch)
+{
+    const std::vector<stochtex::SurfacePoint> points = sphere_points(*model);
+    std::vector<float> planes(3 * raster_size);
+    const stochtex::Texture& texture = *model->texture;
+    const std::size_t n = raster_size;
+    const auto out = stochtex::RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n);
+    for (auto _ : state) {
+        for (std::size_t row = 0; row < points.size(); row += n) {
+            const stochtex::SurfaceBatch batch_of_row{points.data() + row, n};
+            if (batch) texture.eval_solid_points(batch_of_row, out);
+            else texture.Texture::eval_solid_points(batch_of_row, out);
+        }
+        benchmark::DoNotOptimize(planes.data());
+        benchmark::ClobberMemory();
+    }
+    set_pixel_rate(state, double(points.size()));
+    state.SetLabel(std::string("surface points of a sphere, filtered, bands=") + std::to_string(band_count(model->description)) +
+                   ", hist=" + model->histogram + ", " + (batch ? "eval_solid_points (SIMD)" : "point loop (scalar reference)") +
+                   ", calling thread");
+}
+
 // Reference (a): bilinear lookup, repeat wrap, of a baked 512² RGB float image, on one thread.
 // The lookups are offset by a non-integer number of texels so every one really interpolates.
 inline void bilinear_repeat(const Image& baked, double u, double v, float* out)
@@ -413,6 +464,12 @@ int main(int argc, char** argv)
                                          (simd ? "/path:simd" : "/path:point");
                 benchmark::RegisterBenchmark(name.c_str(), bm_raster, model, solid, simd)->Unit(benchmark::kMillisecond);
             }
+    for (const Model* model : {&hist_on, &hist_off})
+        for (bool batch : {true, false}) {
+            const std::string name = "Points3D/" + size + "/bands:" + std::to_string(band_count(model->description)) +
+                                     "/hist:" + model->histogram + (batch ? "/path:batch" : "/path:point");
+            benchmark::RegisterBenchmark(name.c_str(), bm_surface_points, model, batch)->Unit(benchmark::kMillisecond);
+        }
     benchmark::RegisterBenchmark(("Ref/BilinearBaked/" + size).c_str(), bm_bilinear_baked, &baked)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();

@@ -49,10 +49,11 @@ Image render_at_exemplar_scale(const TextureDescription& d, int size, int thread
 }
 
 /// The committed exemplar (no ../shared needed), analysed with the given histogram mode.
-TextureDescription analyse_committed_exemplar(HistogramMode histogram)
+TextureDescription analyse_committed_exemplar(HistogramMode histogram, bool joint_colour = false)
 {
     AnalysisOptions options;
     options.histogram = histogram;
+    options.joint_colour = joint_colour;
     return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
 }
 
@@ -266,7 +267,8 @@ void check_vectorised_paths_against_point_methods()
     // .stex stores them in float decimals, not uniform to 1e-9 (the segment by search): both.
     const TextureDescription analysed = analyse_committed_exemplar(HistogramMode::on);
     const TextureDescription descriptions[] = {analysed, parse_stex(format_stex(analysed), "t.stex"),
-                                               analyse_committed_exemplar(HistogramMode::off)};
+                                               analyse_committed_exemplar(HistogramMode::off),
+                                               analyse_committed_exemplar(HistogramMode::on, true)};
     for (const TextureDescription& d : descriptions) {
         const double pixel = 1.0 / d.pixels_per_unit;
         const auto plain = make_texture(d);
@@ -311,6 +313,26 @@ void check_vectorised_paths_against_point_methods()
                             << "solid " << x << ", " << y << " at " << footprint_px << " px";
                 }
         }
+        // Scattered surface points (a position-map bake), each with its own footprint: more
+        // than one 256-point chunk and not a multiple of any vector length; positions negative,
+        // near the origin and at 5e9 units; footprints from a point sample to most bands dropped.
+        SplitMix64 rng(17);
+        std::vector<SurfacePoint> points(601);
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            SurfacePoint& point = points[k];
+            const double far = k % 7 == 3 ? 5e9 : 0.0;
+            point.p = {far + 4 * rng.uniform() - 2, 4 * rng.uniform() - 2, far - 3 * rng.uniform()};
+            const double footprint_px = k % 5 == 0 ? 0.0 : std::exp2(6 * rng.uniform() - 1);
+            point.dpdx = {footprint_px * pixel * rng.uniform(), footprint_px * pixel, 0};
+            point.dpdy = {0, 0.5 * footprint_px * pixel, footprint_px * pixel * rng.uniform()};
+        }
+        std::vector<float> planes(3 * points.size());
+        const std::size_t n = points.size();
+        plain->eval_solid_points({points.data(), n}, RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n));
+        for (std::size_t k = 0; k < n; ++k) {
+            const Rgb expected = plain->eval_solid(points[k]);
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(planes[c * n + k], expected[c]) << "surface point " << k;
+        }
     }
 }
 
@@ -322,8 +344,9 @@ TEST(WaveletTexture, VectorisedRasterPathsEqualThePointMethodsBitForBit)
     // eval()'s order: every value must be equal, not close. Widths that are not a multiple of any
     // vector length (vector loop and scalar tail), footprints that keep every band, fade some
     // and drop most (the Gauss–Hermite histogram filter), planar and interleaved output, the
-    // periodic form and solid slices; histograms on (the monotone-cubic batch) and off; on every
-    // instruction set Highway compiled the kernels for that this CPU has.
+    // periodic form, solid slices and scattered surface points; histograms on (the
+    // monotone-cubic batch) and off, and joint colour; on every instruction set Highway
+    // compiled the kernels for that this CPU has.
     for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
         hwy::SetSupportedTargetsForTest(target);
         SCOPED_TRACE(hwy::TargetName(target));

@@ -33,6 +33,11 @@ public:
     /// to_rgb() (colour_mapping_batch.cpp: vectorised, the same operations in the same order).
     void to_rgb(const std::array<const double*, 3>& kept, double gain, const std::array<double, 3>& dropped_sigma,
                 const RgbOutput& out, std::size_t first, std::size_t count) const;
+    /// The same for items each with their own dropped σ (scattered points, each its own
+    /// footprint): item i's is dropped_sigma[c][i]. Bit-identical to to_rgb() too.
+    void to_rgb(const std::array<const double*, 3>& kept, double gain,
+                const std::array<const double*, 3>& dropped_sigma, const RgbOutput& out, std::size_t first,
+                std::size_t count) const;
 
     /// The expected value of the texture (everything filtered away).
     Rgb mean() const { return to_rgb({0, 0, 0}, {1, 1, 1}); }
@@ -51,6 +56,12 @@ public:
     Rgb combine(const std::array<double, 3>& y) const;
 
 private:
+    /// The batch to_rgb()s' common body, in blocks: z from kept, `map_block(c, z, y, start, n)`
+    /// maps channel c's block (to_rgb's first step, with the caller's σ), `sigma0(i)` is the
+    /// brightness channel's dropped σ of item i (the conditioning's), then the colour basis.
+    template <class MapBlock, class Sigma0>
+    void to_rgb_blocks(const std::array<const double*, 3>& kept, double gain, const MapBlock& map_block,
+                       const Sigma0& sigma0, const RgbOutput& out, std::size_t first, std::size_t count) const;
 
     std::array<double, 3> sigma_m_;
     std::array<MonotoneCubic, 3> maps_;  // empty: channel stays Gaussian

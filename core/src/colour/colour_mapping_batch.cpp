@@ -178,6 +178,18 @@ void Offset(const double* a, double s, double* out, std::size_t count)
     for (; i < count; ++i) out[i] = a[i] + s;
 }
 
+/// out[i] = a[i] + s[i] · factor (map_channel's z + σ·node, σ per item).
+void OffsetScaled(const double* a, const double* s, double factor, double* out, std::size_t count)
+{
+    const hn::ScalableTag<double> d;
+    const std::size_t lanes = hn::Lanes(d);
+    const auto vf = hn::Set(d, factor);
+    std::size_t i = 0;
+    for (; i + lanes <= count; i += lanes)
+        hn::StoreU(hn::Add(hn::LoadU(d, a + i), hn::Mul(hn::LoadU(d, s + i), vf)), d, out + i);
+    for (; i < count; ++i) out[i] = a[i] + s[i] * factor;
+}
+
 /// sum[i] += weight · f[i].
 void AddWeighted(const double* f, double weight, double* sum, std::size_t count)
 {
@@ -236,6 +248,7 @@ HWY_EXPORT(EvalCubic);
 HWY_EXPORT(Normalise);
 HWY_EXPORT(Scale);
 HWY_EXPORT(Offset);
+HWY_EXPORT(OffsetScaled);
 HWY_EXPORT(AddWeighted);
 HWY_EXPORT(ToRgb);
 }  // namespace colour_batch
@@ -247,41 +260,33 @@ void MonotoneCubic::eval(const double* t, double* out, std::size_t count) const
     HWY_DYNAMIC_DISPATCH(colour_batch::EvalCubic)(f, t, out, count);
 }
 
-void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain,
-                           const std::array<double, 3>& dropped_sigma, const RgbOutput& out, std::size_t first,
-                           std::size_t count) const
+namespace {
+// The batch to_rgb()s' block: small enough for the stack and the L1 cache.
+constexpr std::size_t colour_block = 256;
+}  // namespace
+
+template <class MapBlock, class Sigma0>
+void ColourMapping::to_rgb_blocks(const std::array<const double*, 3>& kept, double gain, const MapBlock& map_block,
+                                  const Sigma0& sigma0, const RgbOutput& out, std::size_t first, std::size_t count) const
 {
-    // Blocks small enough for the stack and the L1 cache.
-    constexpr std::size_t block = 256;
-    double z[block], t[block], f[block], y[3][block], z0[block];
-    const GaussHermite& rule = GaussHermite::standard_normal();
+    double z[colour_block], y[3][colour_block], z0[colour_block];
     const double flat_basis[9] = {basis_[0][0], basis_[0][1], basis_[0][2], basis_[1][0], basis_[1][1],
                                   basis_[1][2], basis_[2][0], basis_[2][1], basis_[2][2]};
-    for (std::size_t start = 0; start < count; start += block) {
-        const std::size_t n = std::min(block, count - start);
+    for (std::size_t start = 0; start < count; start += colour_block) {
+        const std::size_t n = std::min(colour_block, count - start);
         for (int c = 0; c < 3; ++c) {
             // z as the wavelet's finish() makes it, then map_channel()'s three cases.
             if (sigma_m_[c] > 0) HWY_DYNAMIC_DISPATCH(colour_batch::Normalise)(kept[c] + start, gain, sigma_m_[c], z, n);
             else std::fill(z, z + n, 0.0);
-            if (maps_[c].empty()) {
-                HWY_DYNAMIC_DISPATCH(colour_batch::Scale)(z, sigma_m_[c], y[c], n);
-            } else if (dropped_sigma[c] < 1e-4) {
-                maps_[c].eval(z, y[c], n);
-            } else {
-                std::fill(y[c], y[c] + n, 0.0);
-                for (int i = 0; i < GaussHermite::count; ++i) {
-                    HWY_DYNAMIC_DISPATCH(colour_batch::Offset)(z, dropped_sigma[c] * rule.node[i], t, n);
-                    maps_[c].eval(t, f, n);
-                    HWY_DYNAMIC_DISPATCH(colour_batch::AddWeighted)(f, rule.weight[i], y[c], n);
-                }
-            }
+            if (maps_[c].empty()) HWY_DYNAMIC_DISPATCH(colour_batch::Scale)(z, sigma_m_[c], y[c], n);
+            else map_block(c, z, y[c], start, n);
             if (c == 0) std::copy(z, z + n, z0);
         }
         if (chroma_.enabled())
             for (std::size_t i = 0; i < n; ++i) {
                 // condition()'s arithmetic, item by item: bit-identical to to_rgb().
                 std::array<double, 3> item{y[0][i], y[1][i], y[2][i]};
-                condition(z0[i], dropped_sigma[0], item);
+                condition(z0[i], sigma0(start + i), item);
                 y[1][i] = item[1], y[2][i] = item[2];
             }
         const double* rows[3] = {y[0], y[1], y[2]};
@@ -289,6 +294,50 @@ void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain
         for (int c = 0; c < 3; ++c) channel[c] = out.channel[c] + (first + start) * out.stride;
         HWY_DYNAMIC_DISPATCH(colour_batch::ToRgb)(mean_.data(), flat_basis, rows, channel, out.stride, n);
     }
+}
+
+void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain,
+                           const std::array<double, 3>& dropped_sigma, const RgbOutput& out, std::size_t first,
+                           std::size_t count) const
+{
+    const GaussHermite& rule = GaussHermite::standard_normal();
+    const auto map_block = [&](int c, const double* z, double* y, std::size_t, std::size_t n) {
+        if (dropped_sigma[c] < 1e-4) return maps_[c].eval(z, y, n);
+        double t[colour_block], f[colour_block];
+        std::fill(y, y + n, 0.0);
+        for (int i = 0; i < GaussHermite::count; ++i) {
+            HWY_DYNAMIC_DISPATCH(colour_batch::Offset)(z, dropped_sigma[c] * rule.node[i], t, n);
+            maps_[c].eval(t, f, n);
+            HWY_DYNAMIC_DISPATCH(colour_batch::AddWeighted)(f, rule.weight[i], y, n);
+        }
+    };
+    to_rgb_blocks(kept, gain, map_block, [&](std::size_t) { return dropped_sigma[0]; }, out, first, count);
+}
+
+void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain,
+                           const std::array<const double*, 3>& dropped_sigma, const RgbOutput& out, std::size_t first,
+                           std::size_t count) const
+{
+    // map_channel() per item: the quadrature where the item's σ asks for it (every item of the
+    // block runs it, those below the threshold then take the plain map's value instead).
+    const GaussHermite& rule = GaussHermite::standard_normal();
+    const auto map_block = [&](int c, const double* z, double* y, std::size_t start, std::size_t n) {
+        const double* sigma = dropped_sigma[c] + start;
+        double t[colour_block], f[colour_block];
+        std::fill(y, y + n, 0.0);
+        for (int i = 0; i < GaussHermite::count; ++i) {
+            HWY_DYNAMIC_DISPATCH(colour_batch::OffsetScaled)(z, sigma, rule.node[i], t, n);
+            maps_[c].eval(t, f, n);
+            HWY_DYNAMIC_DISPATCH(colour_batch::AddWeighted)(f, rule.weight[i], y, n);
+        }
+        bool any_sharp = false;
+        for (std::size_t k = 0; k < n && !any_sharp; ++k) any_sharp = sigma[k] < 1e-4;
+        if (!any_sharp) return;
+        maps_[c].eval(z, f, n);
+        for (std::size_t k = 0; k < n; ++k)
+            if (sigma[k] < 1e-4) y[k] = f[k];
+    };
+    to_rgb_blocks(kept, gain, map_block, [&](std::size_t i) { return dropped_sigma[0][i]; }, out, first, count);
 }
 
 }  // namespace stochtex

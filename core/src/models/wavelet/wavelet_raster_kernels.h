@@ -59,4 +59,20 @@ void column_splines(const ColumnPositions& positions, std::size_t count, std::in
 void accumulate_band(const ColumnSplines& columns, const float* combined, double gain, double fade_weight,
                      double* kept, std::size_t count);
 
+/// Scattered points of a solid batch (planar, texture units) and one band's map to its lattice:
+/// point k is at lattice (x[k]·scale + offset[0], y[k]·scale + offset[1], z[k]·scale + offset[2]).
+struct SolidBandPoints {
+    const double* x;
+    const double* y;
+    const double* z;
+    double scale;
+    const double* offset;  // 3 values
+};
+
+/// out[k] = WaveletNoise3D::eval at point k's lattice position, k < count: the splines of each
+/// axis (QuadraticBSplineWeights), the 27 coefficients of a size³ tile (index (z·size + y)·size +
+/// x, size a power of two) gathered, and eval()'s sums in eval()'s order.
+void solid_noise_at_points(const SolidBandPoints& points, std::size_t count, const float* coefficients, int size,
+                           float* out);
+
 }  // namespace stochtex::wavelet_raster

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstdint>
 
 namespace stochtex {
@@ -282,6 +283,61 @@ void WaveletTexture::eval_solid_region(const SolidRegion& region, const RgbOutpu
     });
     colour_.to_rgb({&scratch.kept[0], &scratch.kept[pixels], &scratch.kept[2 * pixels]}, solid_gain(), f.dropped_sigma,
                    rgb, 0, pixels);
+}
+
+void WaveletTexture::eval_solid_points(const SurfaceBatch& batch, const RgbOutput& rgb) const
+{
+    // eval_solid() at scattered surface points (a position-map bake): each point has its own
+    // footprint, so no lattice work is shared as on a plane. What a batch shares is the loops:
+    // each band a chunk's fades keep is evaluated at all of the chunk's points by one vector
+    // kernel (the 27 coefficients gathered), and the colour mapping runs over the chunk with each
+    // point's own dropped σ. eval_solid()'s operations in its order: bit-identical values.
+    constexpr std::size_t chunk = 256;
+    const WaveletNoise3D& noise = WaveletNoise3D::shared();
+    struct Scratch {
+        std::array<double, chunk> x, y, z;
+        std::array<float, chunk> value;
+        std::array<Fades, chunk> fades;
+        std::array<std::array<double, chunk>, 3> kept, dropped_sigma;
+    };
+    thread_local std::unique_ptr<Scratch> scratch_holder;  // ~50 kB: allocated once per thread
+    if (!scratch_holder) scratch_holder = std::make_unique<Scratch>();
+    Scratch& scratch = *scratch_holder;
+    for (std::size_t start = 0; start < batch.count; start += chunk) {
+        const std::size_t n = std::min(chunk, batch.count - start);
+        for (std::size_t k = 0; k < n; ++k) {
+            const SurfacePoint& point = batch.points[start + k];
+            Fades& f = scratch.fades[k];
+            f = fades(point.major_axis() * description().pixels_per_unit);
+            scratch.x[k] = point.p[0], scratch.y[k] = point.p[1], scratch.z[k] = point.p[2];
+            for (int c = 0; c < 3; ++c) scratch.kept[c][k] = 0, scratch.dropped_sigma[c][k] = f.dropped_sigma[c];
+        }
+        for (int c = 0; c < 3; ++c) {
+            const auto& bands = bands_[c];
+            for (std::size_t j = 0; j < bands.size(); ++j) {
+                const Band& band = bands[j];
+                if (band.weight == 0) continue;
+                bool kept_somewhere = false;
+                for (std::size_t k = 0; k < n && !kept_somewhere; ++k) kept_somewhere = scratch.fades[k].band[j] > 0;
+                if (!kept_somewhere) continue;
+                wavelet_raster::solid_noise_at_points(
+                    {scratch.x.data(), scratch.y.data(), scratch.z.data(), band.solid_scale, band.offset}, n,
+                    noise.coefficients().data(), noise.tile_size(), scratch.value.data());
+                double* kept = scratch.kept[c].data();
+                for (std::size_t k = 0; k < n; ++k) {
+                    const float fade = scratch.fades[k].band[j];
+                    // for_each_kept_band's fade · weight, then synthesize()'s sum.
+                    if (fade > 0) {
+                        const double fade_weight = fade * band.weight;
+                        kept[k] += fade_weight * scratch.value[k];
+                    }
+                }
+            }
+        }
+        colour_.to_rgb({scratch.kept[0].data(), scratch.kept[1].data(), scratch.kept[2].data()}, solid_gain(),
+                       {scratch.dropped_sigma[0].data(), scratch.dropped_sigma[1].data(), scratch.dropped_sigma[2].data()},
+                       rgb, start, n);
+    }
 }
 
 }  // namespace stochtex

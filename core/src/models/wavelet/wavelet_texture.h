@@ -34,6 +34,7 @@ public:
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     Rgb eval_solid(const SurfacePoint& point) const override;
     void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
+    void eval_solid_points(const SurfaceBatch& points, const RgbOutput& out) const override;
     Rgb mean() const override { return colour_.mean(); }
 
     /// σ_M of each channel (eq. 2) with this build's measured σ_N².
