@@ -32,9 +32,21 @@ ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>,
                                                   double z_max = 3.0);
 
 /// Throws Error naming `what` when the description has joint colour: for the front-ends that
-/// rebuild the colour stage channel by channel (POV-Ray colour maps, OSL shaders) and cannot
-/// express a chroma channel that depends on brightness yet.
-void require_independent_channels(const TextureDescription& description, const std::string& what);
+/// rebuild the colour stage channel by channel (POV-Ray's colour maps) and cannot express a
+/// chroma channel that depends on brightness; `alternative` says what to use instead.
+void require_independent_channels(const TextureDescription& description, const std::string& what,
+                                  const std::string& alternative);
+
+/// The curves after decorrelated axis `axis` of their texture is negated (morph's alignment of
+/// two bases): brightness (0) reverses them in z, a chroma axis negates its location. No-op
+/// without joint colour. The knots must be symmetric about 0, as fitted ones are (else Error).
+void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis);
+
+/// Knot-by-knot interpolation of two textures' curves (morph). A texture without joint colour
+/// takes location 0 and scale 1, which is its own colour stage exactly (y_c = 0 + 1 · r_c, filtered
+/// too: the Gauss–Hermite weights sum to 1). Curves on different knots are resampled onto a's
+/// (b's when only b has any); linear in between, so that is exact when the knots coincide.
+ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t);
 
 /// Evaluation of the curves (uniform knots, linear interpolation, constant beyond the ends).
 class ChromaConditioning {
