@@ -109,16 +109,19 @@ void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis)
 ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t)
 {
     if (!a.enabled() && !b.enabled()) return {};
+    if (a.enabled() != b.enabled())
+        throw Error(std::string("morph: only the ") + (a.enabled() ? "first" : "second") +
+                    " texture has joint colour (colour.chroma_given_brightness), and its chroma residuals cannot be "
+                    "interpolated with the other's chroma values; analyse both photos with the same --joint-colour");
     ChromaGivenBrightness result;
-    result.z = a.enabled() ? a.z : b.z;
+    result.z = a.z;
+    const ChromaConditioning resample_b(b);
     // One texture's curves at knot k of the result: its own values on the same knots.
     const auto at_knot = [&](const ChromaGivenBrightness& curves, std::size_t k, double location[2], double scale[2]) {
-        location[0] = location[1] = 0, scale[0] = scale[1] = 1;
-        if (!curves.enabled()) return;
         if (curves.z == result.z) {
             for (int c = 0; c < 2; ++c) location[c] = curves.location[c][k], scale[c] = curves.scale[c][k];
         } else {
-            ChromaConditioning(curves).curves_at(result.z[k], 0, location, scale);
+            resample_b.curves_at(result.z[k], 0, location, scale);  // only b's knots can differ
         }
     };
     for (int c = 0; c < 2; ++c) result.location[c].resize(result.z.size()), result.scale[c].resize(result.z.size());
