@@ -303,9 +303,12 @@ int PovCommand::run() const
     options.name = name.empty() ? pov::pov_name_from_path(output) : name;
     pov::validate_pov_name(options.name);  // before any work: a typo costs nothing
     const TextureDescription description = read_stex(texture);
-    options.mode = !mode.empty()                                     ? pov::pov_mode_from_string(mode)
-                   : pov::has_procedural_form(description.model) ? pov::PovMode::procedural
-                                                                     : pov::PovMode::baked;
+    // Joint colour has no procedural form (POV-Ray cannot multiply patterns): baked by default.
+    const bool procedural_form =
+        pov::has_procedural_form(description.model) && !description.chroma_given_brightness.enabled();
+    options.mode = !mode.empty()    ? pov::pov_mode_from_string(mode)
+                   : procedural_form ? pov::PovMode::procedural
+                                     : pov::PovMode::baked;
     const std::filesystem::path include_path(output);
     // The baked image sits beside the include, which refers to it by file name only.
     const std::filesystem::path image_path = std::filesystem::path(include_path).replace_extension(".exr");

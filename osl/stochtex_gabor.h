@@ -556,7 +556,8 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
                     int octave_count, float octave[], int key_2d[], int key_3d[], int oriented_below[], int kind, float direction[3],
                     float direction_length, float e1[3], float e2[3], int channels, float sigma_m[],
                     int knot_count[], float knot_z[], float knot_value[], float knot_slope[], float gh_node[],
-                    float gh_weight[], float mean[], float basis[], string sphere_table, int sphere_table_size,
+                    float gh_weight[], int joint_count, float joint_first, float joint_inverse_step, float joint_curve[],
+                    float mean[], float basis[], string sphere_table, int sphere_table_size,
                     float sphere_table_step, STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
 {
     float t[3] = { 1.0, 0.0, 0.0 }, bt[3] = { 0.0, 1.0, 0.0 }, n[3] = { 0.0, 0.0, 1.0 };
@@ -604,7 +605,7 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
         for (int c = 0; c < 3; ++c)
             kept[c] += fade * octave[o + STOCHTEX_GABOR_WEIGHT + c] * value[channels == 1 ? 0 : c];
     }
-    float y[3];
+    float y[3], z0 = 0.0, dropped0 = 0.0;
     for (int c = 0; c < 3; ++c) {
         float z = 0.0, spread = 0.0;
         if (sigma_m[c] > 0.0) {
@@ -612,8 +613,13 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
             spread = sqrt(max(0.0, dropped[c])) / sigma_m[c];
         }
         y[c] = stochtex_channel_value(z, spread, c, sigma_m, knot_count, knot_z, knot_value, knot_slope, gh_node, gh_weight);
+        if (c == 0) {
+            z0 = z;
+            dropped0 = spread;
+        }
     }
-    stochtex_colour_basis(y[0], y[1], y[2], mean, basis, r, g, b);
+    stochtex_colour_joint(y[0], y[1], y[2], z0, dropped0, joint_count, joint_first, joint_inverse_step, joint_curve,
+                          gh_node, gh_weight, mean, basis, r, g, b);
 }
 
 #endif

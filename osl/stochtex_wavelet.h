@@ -141,6 +141,7 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
                       float sigma_m[], float sigma_n2, float solid_gain,
                       int knot_count[], float knot_z[], float knot_value[], float knot_slope[],
                       float gh_node[], float gh_weight[],
+                      int joint_count, float joint_first, float joint_inverse_step, float joint_curve[],
                       float mean[], float basis[],
                       string tile_2d, int size_2d, string tile_3d, int size_3d, int per_row_3d,
                       STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
@@ -149,7 +150,7 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
     for (int j = 0; j < band_count; ++j)
         fade[j] = stochtex_band_fade(j, footprint_px);
     float gain = solid ? solid_gain : 1.0;
-    float y_channel[3];
+    float y_channel[3], z_channel[3], dropped_channel[3];
     for (int c = 0; c < 3; ++c) {
         float kept = 0.0, dropped_variance = 0.0;
         for (int j = 0; j < band_count; ++j) {
@@ -170,8 +171,11 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
         float dropped = sigma > 0.0 ? sqrt(dropped_variance * sigma_n2) / sigma : 0.0;
         y_channel[c] = stochtex_channel_value(zc, dropped, c, sigma_m, knot_count, knot_z, knot_value, knot_slope,
                                               gh_node, gh_weight);
+        z_channel[c] = zc;
+        dropped_channel[c] = dropped;
     }
-    stochtex_colour_basis(y_channel[0], y_channel[1], y_channel[2], mean, basis, r, g, b);
+    stochtex_colour_joint(y_channel[0], y_channel[1], y_channel[2], z_channel[0], dropped_channel[0], joint_count,
+                          joint_first, joint_inverse_step, joint_curve, gh_node, gh_weight, mean, basis, r, g, b);
 }
 
 #endif

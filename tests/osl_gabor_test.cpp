@@ -81,12 +81,14 @@ TEST(OslGaborShader, SixtyFourBitArithmeticMatchesNativeIntegers)
     }
 }
 
-TextureDescription concrete(HistogramMode histogram, GaborKind kind = GaborKind::isotropic, ColourMode colour = ColourMode::pca)
+TextureDescription concrete(HistogramMode histogram, GaborKind kind = GaborKind::isotropic, ColourMode colour = ColourMode::pca,
+                            bool joint_colour = false)
 {
     AnalysisOptions options;
     options.model = "gabor";
     options.histogram = histogram;
     options.colour_mode = colour;
+    options.joint_colour = joint_colour;
     options.max_bands = 6;  // the six finest octaves: every frequency range, a few seconds per test
     options.model_options = {{"gabor-kind", to_string(kind)}};
     return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
@@ -121,6 +123,7 @@ public:
                                  p.i("key_2d"), p.i("key_3d"), p.i("oriented_below"), p.n("kind"), p.a("direction"), p.f("direction_length"),
                                  p.a("plane_e1"), p.a("plane_e2"), p.n("channels"), p.a("sigma_m"), p.i("knot_count"),
                                  p.a("knot_z"), p.a("knot_value"), p.a("knot_slope"), p.a("gh_node"), p.a("gh_weight"),
+                                 p.n("joint_count"), p.f("joint_first"), p.f("joint_inverse_step"), p.a("joint_curve"),
                                  p.a("mean"), p.a("basis"), p.s("sphere_table"), p.n("sphere_table_size"),
                                  p.f("sphere_table_step"), r, g, b);
         return {r, g, b};
@@ -439,6 +442,16 @@ TEST(OslGaborShader, RgbSharedColourModeMatchesCore)
 {
     expect_agreement(compare(concrete(HistogramMode::automatic, GaborKind::isotropic, ColourMode::rgb_shared), false, 150,
                              "isotropic, rgb-shared"));
+}
+
+TEST(OslGaborShader, JointColourMatchesCore)
+{
+    // Joint colour (chroma given brightness): the curves' point and Gauss–Hermite-filtered forms,
+    // at every footprint class, within the same tolerances as the independent channels.
+    const TextureDescription description = concrete(HistogramMode::on, GaborKind::isotropic, ColourMode::pca, true);
+    ASSERT_TRUE(description.chroma_given_brightness.enabled());
+    expect_agreement(compare(description, false, 250, "isotropic, joint colour"));
+    expect_agreement(compare(description, true, 250, "isotropic, joint colour"));
 }
 
 TEST(OslGaborShader, GeneratedShaderIsSelfContained)

@@ -69,7 +69,9 @@ public:
         osl_shim::stochtex_wavelet(solid, float(x), float(y), float(z), float(footprint_px), int(p_.scalars.at("band_count")),
                                    a("scale"), a("weight"), a("offset"), a("sigma_m"), p_.scalars.at("sigma_n2"),
                                    p_.scalars.at("solid_gain"), knot_count.data(), a("knot_z"), a("knot_value"),
-                                   a("knot_slope"), a("gh_node"), a("gh_weight"), a("mean"), a("basis"),
+                                   a("knot_slope"), a("gh_node"), a("gh_weight"), int(p_.scalars.at("joint_count")),
+                                   p_.scalars.at("joint_first"), p_.scalars.at("joint_inverse_step"), a("joint_curve"),
+                                   a("mean"), a("basis"),
                                    p_.strings.at("tile_2d").c_str(), int(p_.scalars.at("size_2d")),
                                    p_.strings.at("tile_3d").c_str(), int(p_.scalars.at("size_3d")),
                                    int(p_.scalars.at("per_row_3d")), r, g, b);
@@ -83,22 +85,24 @@ private:
     ShaderParameters p_;
 };
 
-TextureDescription concrete(HistogramMode histogram, ColourMode colour = ColourMode::pca)
+TextureDescription concrete(HistogramMode histogram, ColourMode colour = ColourMode::pca, bool joint_colour = false)
 {
     AnalysisOptions options;
     options.histogram = histogram;
     options.colour_mode = colour;
+    options.joint_colour = joint_colour;
     return analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), options);
 }
 
-/// Largest |shader − core| over random points and footprints (1/8 … 512 exemplar pixels).
-double max_difference(const TextureDescription& description, bool solid, const std::string& dir)
+/// Largest |shader − core| of each RGB channel over random points and footprints (1/8 … 512
+/// exemplar pixels).
+std::array<double, 3> max_differences(const TextureDescription& description, bool solid, const std::string& dir)
 {
     ShimShader shader(description, dir);
     const auto texture = make_texture(description);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> position(-3.0, 3.0), log_footprint(-3.0, 9.0);
-    double worst = 0;
+    std::array<double, 3> worst{};
     for (int i = 0; i < 400; ++i) {
         const double x = position(rng), y = position(rng), z = position(rng);
         const double footprint_px = std::exp2(log_footprint(rng));
@@ -114,9 +118,15 @@ double max_difference(const TextureDescription& description, bool solid, const s
             core = texture->eval({x, y}, Footprint2D::square(units));
         }
         const Rgb osl = shader.eval(solid, x, y, z, footprint_px);
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(osl[c] - core[c])));
+        for (int c = 0; c < 3; ++c) worst[c] = std::max(worst[c], double(std::abs(osl[c] - core[c])));
     }
     return worst;
+}
+
+double max_difference(const TextureDescription& description, bool solid, const std::string& dir)
+{
+    const std::array<double, 3> worst = max_differences(description, solid, dir);
+    return std::max({worst[0], worst[1], worst[2]});
 }
 
 double colour_scale(const TextureDescription& description)
@@ -128,6 +138,10 @@ double colour_scale(const TextureDescription& description)
 // moves the spline by ~1e-4 of a coefficient: measured 2.5e-5 of the mean colour at most.
 // A wrong offset, weight, fade or histogram knot moves values by ~0.1 of the mean or more.
 constexpr double tolerance = 2e-4;
+// Joint colour, in units of each RGB channel's σ: measured 2.2e-4 σ (2D) and 1.1e-4 σ (solid), the
+// float rounding above; evaluating the curves unfiltered where brightness detail is dropped
+// measured 8e-2 σ.
+constexpr double joint_tolerance_sigma = 1e-3;
 
 TEST(OslShader, TwoDimensionalShaderMatchesCore)
 {
@@ -152,6 +166,40 @@ TEST(OslShader, RgbColourModeMatchesCore)
     const std::string dir = test::temp_dir("oslrgb");
     const TextureDescription description = concrete(HistogramMode::automatic, ColourMode::rgb);
     EXPECT_LT(max_difference(description, false, dir) / colour_scale(description), tolerance);
+}
+
+TEST(OslShader, JointColourMatchesCore)
+{
+    // Joint colour: chroma = location(z_0) + scale(z_0) · residual, the curves filtered by
+    // Gauss–Hermite where brightness detail is dropped (footprints 1/8 … 512 px cover both forms).
+    const std::string dir = test::temp_dir("ostjoint");
+    const TextureDescription description = concrete(HistogramMode::on, ColourMode::pca, true);
+    ASSERT_TRUE(description.chroma_given_brightness.enabled());
+    const std::array<double, 3> sigma = osl_test::channel_sigmas(*make_texture(description));
+    // What the curves change: the same texture read as independent channels, in σ. A shader that
+    // ignored them (or swapped location and scale) would be off by about this much.
+    TextureDescription independent = description;
+    independent.chroma_given_brightness = {};
+    double effect = 0;
+    {
+        const auto joint = make_texture(description), without = make_texture(independent);
+        std::mt19937 rng(3);
+        std::uniform_real_distribution<double> position(-3.0, 3.0);
+        for (int i = 0; i < 200; ++i) {
+            const Vec2 p{position(rng), position(rng)};
+            const Rgb a = joint->eval(p, Footprint2D{}), b = without->eval(p, Footprint2D{});
+            for (int c = 0; c < 3; ++c) effect = std::max(effect, std::abs(double(a[c]) - b[c]) / sigma[c]);
+        }
+    }
+    for (const bool solid : {false, true}) {
+        const std::array<double, 3> worst = max_differences(description, solid, dir);
+        double worst_sigma = 0;
+        for (int c = 0; c < 3; ++c) worst_sigma = std::max(worst_sigma, worst[c] / sigma[c]);
+        std::printf("wavelet OSL vs core, joint colour, %s: max %.2e sigma (the curves' effect: %.2f sigma)\n",
+                    solid ? "solid" : "2D", worst_sigma, effect);
+        EXPECT_LT(worst_sigma, joint_tolerance_sigma) << (solid ? "solid" : "2D");
+    }
+    EXPECT_GT(effect, 100 * joint_tolerance_sigma) << "the test texture's joint colour should matter";
 }
 
 TEST(OslShader, GeneratedShaderIsSelfContained)

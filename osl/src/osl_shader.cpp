@@ -20,8 +20,8 @@ namespace stochtex::osl {
 namespace {
 
 // Array sizes of the templates' parameters (osl/stochtex_*.h: STOCHTEX_MAX_BANDS, _MAX_KNOTS,
-// _GH_COUNT, STOCHTEX_GABOR_MAX_OCTAVES, _STRIDE).
-constexpr int max_bands = 24, max_knots = 64, gh_count = 12;
+// _GH_COUNT, _MAX_JOINT_KNOTS, STOCHTEX_GABOR_MAX_OCTAVES, _STRIDE).
+constexpr int max_bands = 24, max_knots = 64, gh_count = 12, max_joint_knots = 64;
 constexpr int max_octaves = 24, octave_stride = 16;
 constexpr int atlas_per_row = 8;  // 64 slices of the 3D tile as 8 × 8
 constexpr int moment_channels = 9;
@@ -124,6 +124,30 @@ struct ParameterBlock {
     }
 };
 
+/// stochtex_colour.h's joint colour: knot count (0: independent channels), first knot, 1 / knot
+/// spacing (computed here in double, as the core's ChromaConditioning does), and the four curves
+/// location 1, location 2, scale 1, scale 2, each padded to max_joint_knots.
+void add_joint_colour(ParameterBlock& block, const ChromaGivenBrightness& curves)
+{
+    std::vector<double> values(4 * max_joint_knots, 0.0);
+    double first = -3, inverse_step = 8;
+    const std::size_t knots = curves.enabled() ? curves.z.size() : 0;
+    if (knots > std::size_t(max_joint_knots)) throw Error("OSL shader: more than 64 joint-colour knots");
+    if (knots > 0) {
+        first = curves.z.front();
+        inverse_step = double(knots - 1) / (curves.z.back() - curves.z.front());
+        for (int c = 0; c < 2; ++c)
+            for (std::size_t k = 0; k < knots; ++k) {
+                values[c * max_joint_knots + k] = curves.location[c][k];
+                values[(2 + c) * max_joint_knots + k] = curves.scale[c][k];
+            }
+    }
+    block.add("int joint_count = " + std::to_string(knots));
+    block.add("float joint_first = " + number(first));
+    block.add("float joint_inverse_step = " + number(inverse_step));
+    block.add("float joint_curve[256] = " + array(values, values.size()));
+}
+
 /// stochtex_colour.h's parameters: the histogram maps, the Gauss–Hermite rule, mean and basis.
 void add_colour(ParameterBlock& block, const ShaderColourData& colour)
 {
@@ -195,6 +219,7 @@ std::string wavelet_shader(const TextureDescription& description, const OslShade
     block.add("float sigma_n2 = " + number(data.sigma_n2));
     block.add("float solid_gain = " + number(data.solid_gain));
     add_colour(block, data.colour);
+    add_joint_colour(block, data.colour.chroma_given_brightness);
     return instantiate("stochtex_wavelet.osl", "stochtex_wavelet", block.text, description, options);
 }
 
@@ -242,6 +267,7 @@ std::string gabor_shader(const TextureDescription& description, const OslShaderO
     block.add("int channels = " + std::to_string(data.channels));
     block.add("float sigma_m[3] = " + array({data.sigma_m.begin(), data.sigma_m.end()}, 3));
     add_colour(block, data.colour);
+    add_joint_colour(block, data.colour.chroma_given_brightness);
     return instantiate("stochtex_gabor.osl", "stochtex_gabor", block.text, description, options);
 }
 

@@ -58,6 +58,12 @@ std::string fmt(const char* pattern, double a, double b = 0)
 
 PovInclude make_procedural_include(const TextureDescription& description, const PovIncludeOptions& options)
 {
+    // Joint colour's chroma is location(z_0) + scale(z_0) · r_c: a product of two patterns, which
+    // POV-Ray's pattern and colour-map blending cannot form (it can only add them).
+    if (description.chroma_given_brightness.enabled())
+        throw Error("POV-Ray procedural include: this texture has joint colour (colour.chroma_given_brightness: its "
+                    "chroma depends on its brightness), and POV-Ray cannot multiply two patterns to express it; use "
+                    "stex pov --mode baked (an image map), or analyse the photo with --joint-colour off");
     const std::string& n = options.name;
     const PovNoiseCalibration& noise = pov_noise_calibration();
     const bool shared_noise = description.colour_mode == ColourMode::rgb_shared;

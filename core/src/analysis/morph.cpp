@@ -5,6 +5,7 @@
 #include <stochtex/channel_map.h>
 
 #include "numerics/interpolation.h"
+#include "colour/chroma_given_brightness.h"
 #include "colour/histogram_map.h"
 #include "models/model.h"
 
@@ -53,9 +54,9 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
     if (a.colour_mode != b.colour_mode)
         throw Error(std::string("morph: colour modes differ (") + to_string(a.colour_mode) + " vs " +
                     to_string(b.colour_mode) + ")");
-    if (a.chroma_given_brightness.enabled() || b.chroma_given_brightness.enabled())
-        throw Error("morph: joint colour (colour.chroma_given_brightness) is not interpolated; analyse both photos "
-                    "with --joint-colour off to morph them");
+    // Joint colour is interpolated only between textures that both have it: throws otherwise.
+    if (a.chroma_given_brightness.enabled() != b.chroma_given_brightness.enabled())
+        morphed_joint_colour(a.chroma_given_brightness, b.chroma_given_brightness, t);
     if (t == 0) return a;
     if (t == 1) return b;
 
@@ -79,6 +80,7 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
         if (!flip) continue;
         basis_b.col(c) = -basis_b.col(c);
         if (aligned.histograms[c].enabled()) aligned.histograms[c] = mirrored(aligned.histograms[c]);
+        flip_joint_colour_axis(aligned.chroma_given_brightness, c);
     }
 
     TextureDescription result = a;
@@ -105,6 +107,8 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
         map.value.resize(z.size());
         for (std::size_t k = 0; k < z.size(); ++k) map.value[k] = lerp(va[k], vb[k], t);
     }
+
+    result.chroma_given_brightness = morphed_joint_colour(a.chroma_given_brightness, aligned.chroma_given_brightness, t);
 
     std::ostringstream source;
     source << "morph(" << a.provenance.source << ", " << b.provenance.source << ", t=" << t << ")";

@@ -31,7 +31,7 @@ struct ChannelFunction {
 
 ChannelFunction channel_function(const TextureDescription& description, int channel)
 {
-    require_independent_channels(description, "channel colour map");
+    require_independent_channels(description, "channel colour map", "bake the texture to an image instead");
     ChannelFunction f;
     f.sigma = channel_sigma(description, channel);
     const HistogramMap& histogram = description.histograms[channel];

@@ -2,6 +2,7 @@
 
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
+#include "numerics/interpolation.h"
 
 #include <stochtex/error.h>
 
@@ -77,12 +78,63 @@ ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>,
     return curves;
 }
 
-void require_independent_channels(const TextureDescription& description, const std::string& what)
+void require_independent_channels(const TextureDescription& description, const std::string& what,
+                                  const std::string& alternative)
 {
     if (description.chroma_given_brightness.enabled())
         throw Error(what + ": this texture has joint colour (colour.chroma_given_brightness: its chroma depends on its "
-                           "brightness), which this output cannot express channel by channel yet; analyse the photo "
-                           "with --joint-colour off for it");
+                           "brightness), which this output cannot express channel by channel; " + alternative +
+                    ", or analyse the photo with --joint-colour off");
+}
+
+void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis)
+{
+    if (!curves.enabled()) return;
+    if (axis == 0) {
+        // z_0 → −z_0: the same curves read from the other end, on knots symmetric about 0.
+        for (std::size_t k = 0; k < curves.z.size(); ++k)
+            if (std::abs(curves.z[k] + curves.z[curves.z.size() - 1 - k]) > 1e-9 * (1 + std::abs(curves.z[k])))
+                throw Error("morph: joint colour's knots are not symmetric about 0, so its brightness axis cannot be "
+                            "flipped to match the other texture's");
+        for (int c = 0; c < 2; ++c) {
+            std::reverse(curves.location[c].begin(), curves.location[c].end());
+            std::reverse(curves.scale[c].begin(), curves.scale[c].end());
+        }
+    } else {
+        // y_c → −y_c = −location_c + scale_c · (−r_c): the residual's map is mirrored with it.
+        for (double& value : curves.location[axis - 1]) value = -value;
+    }
+}
+
+ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t)
+{
+    if (!a.enabled() && !b.enabled()) return {};
+    if (a.enabled() != b.enabled())
+        throw Error(std::string("morph: only the ") + (a.enabled() ? "first" : "second") +
+                    " texture has joint colour (colour.chroma_given_brightness), and its chroma residuals cannot be "
+                    "interpolated with the other's chroma values; analyse both photos with the same --joint-colour");
+    ChromaGivenBrightness result;
+    result.z = a.z;
+    const ChromaConditioning resample_b(b);
+    // One texture's curves at knot k of the result: its own values on the same knots.
+    const auto at_knot = [&](const ChromaGivenBrightness& curves, std::size_t k, double location[2], double scale[2]) {
+        if (curves.z == result.z) {
+            for (int c = 0; c < 2; ++c) location[c] = curves.location[c][k], scale[c] = curves.scale[c][k];
+        } else {
+            resample_b.curves_at(result.z[k], 0, location, scale);  // only b's knots can differ
+        }
+    };
+    for (int c = 0; c < 2; ++c) result.location[c].resize(result.z.size()), result.scale[c].resize(result.z.size());
+    for (std::size_t k = 0; k < result.z.size(); ++k) {
+        double location_a[2], scale_a[2], location_b[2], scale_b[2];
+        at_knot(a, k, location_a, scale_a);
+        at_knot(b, k, location_b, scale_b);
+        for (int c = 0; c < 2; ++c) {
+            result.location[c][k] = lerp(location_a[c], location_b[c], t);
+            result.scale[c][k] = lerp(scale_a[c], scale_b[c], t);
+        }
+    }
+    return result;
 }
 
 ChromaConditioning::ChromaConditioning(const ChromaGivenBrightness& curves)

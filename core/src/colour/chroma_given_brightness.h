@@ -32,9 +32,27 @@ ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>,
                                                   double z_max = 3.0);
 
 /// Throws Error naming `what` when the description has joint colour: for the front-ends that
-/// rebuild the colour stage channel by channel (POV-Ray colour maps, OSL shaders) and cannot
-/// express a chroma channel that depends on brightness yet.
-void require_independent_channels(const TextureDescription& description, const std::string& what);
+/// rebuild the colour stage channel by channel (POV-Ray's colour maps) and cannot express a
+/// chroma channel that depends on brightness; `alternative` says what to use instead.
+void require_independent_channels(const TextureDescription& description, const std::string& what,
+                                  const std::string& alternative);
+
+/// The curves after decorrelated axis `axis` of their texture is negated (morph's alignment of
+/// two bases): brightness (0) reverses them in z, a chroma axis negates its location. No-op
+/// without joint colour. The knots must be symmetric about 0, as fitted ones are (else Error).
+void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis);
+
+/// Knot-by-knot interpolation of two textures' curves (morph); both with joint colour, or neither
+/// (else Error naming the one that has it; morph checks first, so that t = 0 and 1 refuse too). Curves on other knots than a's are resampled onto a's: linear in between, so that
+/// is exact when the knots coincide (they do for every analysis: 49 knots on [−3, 3]).
+///
+/// Why not one texture with joint colour and one without, the latter as location 0, scale 1? That
+/// is its colour stage (y_c = 0 + 1 · r_c), but its chroma maps give values (σ ~ 0.01 on concrete) where the
+/// other's give unit-spread residuals: interpolating the scales and the maps separately multiplies
+/// two midpoints, and at t = 0.5 the chroma spread came out 8× either texture's (σ 0.19–0.23
+/// against 0.027). Rescaling one side's residual needs its histogram map or its model's channel
+/// gain, which not every texture has in a model-independent form.
+ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t);
 
 /// Evaluation of the curves (uniform knots, linear interpolation, constant beyond the ends).
 class ChromaConditioning {

@@ -1,6 +1,5 @@
 #include <stochtex/models/shader_colour_data.h>
 
-#include "colour/chroma_given_brightness.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
 
@@ -8,10 +7,10 @@ namespace stochtex {
 
 ShaderColourData shader_colour_data(const TextureDescription& description)
 {
-    require_independent_channels(description, "OSL shader");
     ShaderColourData data;
     data.mean = description.mean;
     data.basis = description.basis;
+    data.chroma_given_brightness = description.chroma_given_brightness;
     for (int c = 0; c < 3; ++c) {
         const HistogramMap& map = description.histograms[c];
         if (!map.enabled()) continue;
