@@ -49,6 +49,9 @@ struct LrpSamplingOptions {
     /// carrying the longest wavelengths' energy upward. The other strata share the remaining cosines. 0 (analytic
     /// spectra): no such stratum (docs/models/lrp.md, "Low frequencies and the top octave").
     double resolve = 0;
+    /// > 0: a stratum whose energy spans more than this many octaves of |f| (between its 10 % and
+    /// 90 % energy quantiles) is split into one stratum per octave. 0: strata of equal energy only.
+    double octave_span = 0;
     /// k-means weighted by the power of each bin: sub-strata of similar energy rather than area.
     bool power_weighted = true;
     std::uint64_t seed = 1;   ///< k-means seeding
