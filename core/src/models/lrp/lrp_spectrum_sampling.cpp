@@ -203,10 +203,13 @@ struct Bin {
 /// Energy share below (and above) a stratum's radial extent (LrpSamplingOptions::octave_span).
 constexpr double extent_quantile = 0.1;
 
+/// The octave [T/4, T/2) of bins: the top one (floor(log2 |k|) of its bins).
+int top_octave(int size) { return int(std::log2(size / 4.0)); }
+
 /// The octave of a bin, floor(log2 |k|), the corners past Nyquist with the top one.
 int octave_of(const Bin& bin, int size)
 {
-    return std::clamp(int(std::floor(std::log2(std::hypot(bin.kx, bin.ky)))), 0, int(std::log2(size / 4.0)));
+    return std::clamp(int(std::floor(std::log2(std::hypot(bin.kx, bin.ky)))), 0, top_octave(size));
 }
 
 /// log2 |k| at a stratum's extent_quantile and 1 − extent_quantile of its energy.
@@ -241,7 +244,7 @@ void split_wide_strata(std::vector<std::vector<const Bin*>>& members, int size, 
     for (std::size_t s = members.size(); s-- > 0;) {
         const auto [low, high] = octave_extent(members[s]);
         if (!(high - low > span && high >= top_two_octaves)) continue;
-        std::vector<std::vector<const Bin*>> pieces(std::size_t(octave_of(Bin{size / 2, 0, 0, 0}, size)) + 1);
+        std::vector<std::vector<const Bin*>> pieces(std::size_t(top_octave(size)) + 1);
         for (const Bin* bin : members[s]) pieces[std::size_t(octave_of(*bin, size))].push_back(bin);
         pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const auto& p) { return p.empty(); }), pieces.end());
         if (count + int(pieces.size()) - 1 > max_count) continue;

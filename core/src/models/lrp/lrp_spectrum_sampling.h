@@ -8,6 +8,8 @@
 //     and its mirror always share a stratum. The least energetic bins holding 0.1 % of the
 //     energy in total are left out: an analytic spectrum's numerically-zero tails would
 //     otherwise make the last stratum cover the whole plane.
+//   * By example, a steep spectrum's weakest stratum (many octaves of little energy up to
+//     Nyquist, one tiny window whose spread is nearly white) is split by octave (`octave_span`).
 //   * Budget: J_S = J / L, the remainder to the most energetic strata; J_S ≤ the eroded
 //     stratum's bin count (a stratum of three peaks gets three cosines). By example, the lowest
 //     octave first gets a stratum of its own (`resolve`), one cosine per bin.
@@ -50,7 +52,9 @@ struct LrpSamplingOptions {
     /// spectra): no such stratum (docs/models/lrp.md, "Low frequencies and the top octave").
     double resolve = 0;
     /// > 0: a stratum whose energy spans more than this many octaves of |f| (between its 10 % and
-    /// 90 % energy quantiles) is split into one stratum per octave. 0: strata of equal energy only.
+    /// 90 % energy quantiles) and reaches the top two octaves (its 90 % quantile ≥ 1/8 cycle per
+    /// pixel) is split into one stratum per octave, within max_lrp_strata (the fit's 2; 0, analytic
+    /// spectra: strata of equal energy only).
     double octave_span = 0;
     /// k-means weighted by the power of each bin: sub-strata of similar energy rather than area.
     bool power_weighted = true;
