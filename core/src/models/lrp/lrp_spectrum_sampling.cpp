@@ -200,43 +200,46 @@ struct Bin {
     double multiplicity;
 };
 
-/// Energy share below (and above) a stratum's radial extent (LrpSamplingOptions::octave_span).
+/// Quantile of a stratum's energy (from below) and of its bins (from above) between which its
+/// radial extent is measured (LrpSamplingOptions::octave_span).
 constexpr double extent_quantile = 0.1;
 
 /// The octave [T/4, T/2) of bins: the top one (floor(log2 |k|) of its bins).
 int top_octave(int size) { return int(std::log2(size / 4.0)); }
 
-/// The octave of a bin, floor(log2 |k|), the corners past Nyquist with the top one.
-int octave_of(const Bin& bin, int size)
-{
-    return std::clamp(int(std::floor(std::log2(std::hypot(bin.kx, bin.ky)))), 0, top_octave(size));
-}
+double log2_radius(const Bin& bin) { return std::log2(std::hypot(bin.kx, bin.ky)); }
 
-/// log2 |k| at a stratum's extent_quantile and 1 − extent_quantile of its energy.
+/// The octave of a bin, floor(log2 |k|), the corners past Nyquist with the top one.
+int octave_of(const Bin& bin, int size) { return std::clamp(int(std::floor(log2_radius(bin))), 0, top_octave(size)); }
+
+/// log2 |k| where a stratum's energy begins (its extent_quantile of energy from below) and
+/// where its bins end (their 1 − extent_quantile by count): the cosines (power-weighted k-means)
+/// sit near the first, the window (sized by the bin count) must cover up to the second.
 std::pair<double, double> octave_extent(const std::vector<const Bin*>& stratum)
 {
-    std::vector<std::pair<double, double>> octave;  // log2 |k|, energy
+    std::vector<std::pair<double, double>> radius;  // log2 |k|, energy
     double energy = 0;
     for (const Bin* bin : stratum) {
-        octave.emplace_back(std::log2(std::hypot(bin->kx, bin->ky)), bin->power * bin->multiplicity);
-        energy += octave.back().second;
+        radius.emplace_back(log2_radius(*bin), bin->power * bin->multiplicity);
+        energy += radius.back().second;
     }
-    std::sort(octave.begin(), octave.end());
-    double below = 0, low = 0, high = 0;
-    bool low_found = false;
-    for (const auto& [o, e] : octave) {
-        below += e;
-        if (!low_found && below >= extent_quantile * energy) low = o, low_found = true;
-        if (below <= (1 - extent_quantile) * energy) high = o;
-    }
+    std::sort(radius.begin(), radius.end());
+    double below = 0, low = radius.front().first;
+    for (const auto& [r, e] : radius)
+        if ((below += e) >= extent_quantile * energy) {
+            low = r;
+            break;
+        }
+    const double high = radius[std::min(radius.size() - 1, std::size_t((1 - extent_quantile) * double(radius.size())))].first;
     return {low, high};
 }
 
-/// LrpSamplingOptions::octave_span: each stratum wider than `span` octaves that reaches the top two
-/// octaves (|k| ≥ T/8: small windows, whose spread covers most of the plane) becomes one stratum
-/// per octave of |k| it touches (lowest first, in its place), the weakest strata first, while the
-/// count stays within `max_count`. (Splitting the wide low-frequency strata too, 4–22 bins on
-/// concrete, left a piece at 0.43 of its energy target.)
+/// LrpSamplingOptions::octave_span: each stratum whose extent exceeds `span` octaves and whose
+/// bins reach the top two octaves (|k| ≥ T/8: small windows, whose spread covers most of the
+/// plane) becomes one stratum per octave of |k| it touches (lowest first, in its place), the
+/// weakest strata first. Within `max_count` strata: where the pieces would exceed it, the lowest
+/// pieces merge (the top octaves, which the split is for, stay apart). (Splitting the wide
+/// low-frequency strata too, 4–22 bins on concrete, left a piece at 0.43 of its energy target.)
 void split_wide_strata(std::vector<std::vector<const Bin*>>& members, int size, double span, int max_count)
 {
     int count = int(members.size());
@@ -247,7 +250,11 @@ void split_wide_strata(std::vector<std::vector<const Bin*>>& members, int size, 
         std::vector<std::vector<const Bin*>> pieces(std::size_t(top_octave(size)) + 1);
         for (const Bin* bin : members[s]) pieces[std::size_t(octave_of(*bin, size))].push_back(bin);
         pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const auto& p) { return p.empty(); }), pieces.end());
-        if (count + int(pieces.size()) - 1 > max_count) continue;
+        while (pieces.size() > 1 && count + int(pieces.size()) - 1 > max_count) {
+            pieces[1].insert(pieces[1].end(), pieces[0].begin(), pieces[0].end());
+            pieces.erase(pieces.begin());
+        }
+        if (pieces.size() < 2) continue;  // no room: the stratum stays as it was (its bins in density order)
         count += int(pieces.size()) - 1;
         members.erase(members.begin() + std::ptrdiff_t(s));
         members.insert(members.begin() + std::ptrdiff_t(s), std::make_move_iterator(pieces.begin()),
