@@ -326,7 +326,7 @@ TEST(LrpByExample, SteepSpectrumKeepsItsUpperOctaves)
     // energy alone put eight strata there and one (Δ = 1.3 px, 5 cosines) over everything above,
     // whose nearly white spectrum no variance can shape: the octave |k| ∈ [T/8, T/4) came out
     // −14.1 dB on the first channel (−14.4 dB with variances solved on the rings alone), radial
-    // distance 6.45 dB. Strata wider than two octaves are now split by octave.
+    // distance 6.45 dB. Such strata are now split by octave (LrpSamplingOptions::octave_span).
     const Image photo = exemplar_crop("sand_dunes.png", 512);
     if (photo.empty()) GTEST_SKIP() << "../shared/exemplars not available";
     const TextureDescription d = analyse_lrp(photo, 0);

@@ -51,10 +51,10 @@ struct LrpSamplingOptions {
     /// carrying the longest wavelengths' energy upward. The other strata share the remaining cosines. 0 (analytic
     /// spectra): no such stratum (docs/models/lrp.md, "Low frequencies and the top octave").
     double resolve = 0;
-    /// > 0: a stratum whose energy spans more than this many octaves of |f| (between its 10 % and
-    /// 90 % energy quantiles) and reaches the top two octaves (its 90 % quantile ≥ 1/8 cycle per
-    /// pixel) is split into one stratum per octave, within max_lrp_strata (the fit's 2; 0, analytic
-    /// spectra: strata of equal energy only).
+    /// > 0: a stratum spanning more than this many octaves of |f|, from where its energy begins
+    /// (10 % quantile of energy) to where its bins end (90 % quantile of bin count), whose bins
+    /// reach the top two octaves (≥ 1/8 cycle per pixel), is split into one stratum per octave,
+    /// within max_lrp_strata (the fit's 2.5; 0, analytic spectra: strata of equal energy only).
     double octave_span = 0;
     /// k-means weighted by the power of each bin: sub-strata of similar energy rather than area.
     bool power_weighted = true;
