@@ -76,6 +76,7 @@ LrpParameters fit_lrp(const std::array<std::vector<float>, 3>& channels, int wid
     sampling.representatives = options.representatives;
     sampling.coverage = options.coverage;
     sampling.resolve = options.resolve;
+    sampling.octave_span = options.octave_span;
     sampling.power_weighted = options.power_weighted;
     sampling.seed = options.seed;
     StratifiedSpectrum strata = stratify_spectrum(

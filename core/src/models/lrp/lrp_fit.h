@@ -32,6 +32,7 @@ struct LrpFitOptions {
     int representatives = 4;          ///< stored bins per sub-stratum
     double coverage = 0.125;          ///< Δ_S = T √(coverage J_S / |S_half|)
     double resolve = 0.6;             ///< the lowest octave's own stratum, Δ = resolve / f (LrpSamplingOptions::resolve)
+    double octave_span = 2.5;         ///< strata wider than this many octaves split by octave (LrpSamplingOptions::octave_span)
     bool power_weighted = true;       ///< sub-strata of equal energy rather than equal area
     bool random_placement = true;
     double turbulence = -1;           ///< displacement σ, exemplar pixels; < 0: automatic

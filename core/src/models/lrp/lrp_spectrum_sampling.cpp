@@ -1,5 +1,6 @@
 #include "models/lrp/lrp_spectrum_sampling.h"
 
+#include "models/lrp/lrp_parameters.h"
 #include "models/lrp/lrp_window.h"
 #include "numerics/random.h"
 
@@ -192,6 +193,75 @@ constexpr double resolved_quantile = 0.1;
 /// The lowest octave's stratum: bins nearer DC than this (LrpSamplingOptions::resolve).
 constexpr double lowest_octave_bins = 2;
 
+/// A half-plane representative bin (a bin whose index is not below its mirror's).
+struct Bin {
+    int kx, ky;
+    double power;  // density of the partition spectrum
+    double multiplicity;
+};
+
+/// Quantile of a stratum's energy (from below) and of its bins (from above) between which its
+/// radial extent is measured (LrpSamplingOptions::octave_span).
+constexpr double extent_quantile = 0.1;
+
+/// The octave [T/4, T/2) of bins: the top one (floor(log2 |k|) of its bins).
+int top_octave(int size) { return int(std::log2(size / 4.0)); }
+
+double log2_radius(const Bin& bin) { return std::log2(std::hypot(bin.kx, bin.ky)); }
+
+/// The octave of a bin, floor(log2 |k|), the corners past Nyquist with the top one.
+int octave_of(const Bin& bin, int size) { return std::clamp(int(std::floor(log2_radius(bin))), 0, top_octave(size)); }
+
+/// log2 |k| where a stratum's energy begins (its extent_quantile of energy from below) and
+/// where its bins end (their 1 − extent_quantile by count): the cosines (power-weighted k-means)
+/// sit near the first, the window (sized by the bin count) must cover up to the second.
+std::pair<double, double> octave_extent(const std::vector<const Bin*>& stratum)
+{
+    std::vector<std::pair<double, double>> radius;  // log2 |k|, energy
+    double energy = 0;
+    for (const Bin* bin : stratum) {
+        radius.emplace_back(log2_radius(*bin), bin->power * bin->multiplicity);
+        energy += radius.back().second;
+    }
+    std::sort(radius.begin(), radius.end());
+    double below = 0, low = radius.front().first;
+    for (const auto& [r, e] : radius)
+        if ((below += e) >= extent_quantile * energy) {
+            low = r;
+            break;
+        }
+    const double high = radius[std::min(radius.size() - 1, std::size_t((1 - extent_quantile) * double(radius.size())))].first;
+    return {low, high};
+}
+
+/// LrpSamplingOptions::octave_span: each stratum whose extent exceeds `span` octaves and whose
+/// bins reach the top two octaves (|k| ≥ T/8: small windows, whose spread covers most of the
+/// plane) becomes one stratum per octave of |k| it touches (lowest first, in its place), the
+/// weakest strata first. Within `max_count` strata: where the pieces would exceed it, the lowest
+/// pieces merge (the top octaves, which the split is for, stay apart). (Splitting the wide
+/// low-frequency strata too, 4–22 bins on concrete, left a piece at 0.43 of its energy target.)
+void split_wide_strata(std::vector<std::vector<const Bin*>>& members, int size, double span, int max_count)
+{
+    int count = int(members.size());
+    const double top_two_octaves = std::log2(size / 8.0);
+    for (std::size_t s = members.size(); s-- > 0;) {
+        const auto [low, high] = octave_extent(members[s]);
+        if (!(high - low > span && high >= top_two_octaves)) continue;
+        std::vector<std::vector<const Bin*>> pieces(std::size_t(top_octave(size)) + 1);
+        for (const Bin* bin : members[s]) pieces[std::size_t(octave_of(*bin, size))].push_back(bin);
+        pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const auto& p) { return p.empty(); }), pieces.end());
+        while (pieces.size() > 1 && count + int(pieces.size()) - 1 > max_count) {
+            pieces[1].insert(pieces[1].end(), pieces[0].begin(), pieces[0].end());
+            pieces.erase(pieces.begin());
+        }
+        if (pieces.size() < 2) continue;  // no room: the stratum stays as it was (its bins in density order)
+        count += int(pieces.size()) - 1;
+        members.erase(members.begin() + std::ptrdiff_t(s));
+        members.insert(members.begin() + std::ptrdiff_t(s), std::make_move_iterator(pieces.begin()),
+                       std::make_move_iterator(pieces.end()));
+    }
+}
+
 double window_spacing(int size, int terms, std::size_t bins, double low_frequency, const LrpSamplingOptions& options)
 {
     if (options.spacing > 0) return options.spacing;
@@ -213,11 +283,6 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
         if (channel && channel->size != size) throw Error("stratify_spectrum: channel spectra differ in size");
 
     // Half-plane representatives: a bin whose index is not below its mirror's.
-    struct Bin {
-        int kx, ky;
-        double power;  // density of the partition spectrum
-        double multiplicity;
-    };
     std::vector<Bin> bins;
     double total = 0;
     for (int ky = -size / 2; ky < size / 2; ++ky)
@@ -265,8 +330,14 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
         if (!(low_terms > 0 && std::hypot(bin.kx, bin.ky) < lowest_octave_bins)) members[std::size_t(s)].push_back(&bin);
         cumulative += energy;
     }
-    if (low_terms > 0) members.insert(members.begin(), std::move(low));
     members.erase(std::remove_if(members.begin(), members.end(), [](const auto& m) { return m.empty(); }), members.end());
+    // Equal energy puts almost no stratum where a steep spectrum holds little energy over many
+    // octaves: the weakest stratum then spans them all with one tiny window whose nearly white
+    // spectrum the leakage solve cannot shape (sand dunes: 10–30 dB weak over the upper half of
+    // the frequencies, docs/models/lrp.md). Such strata are split by octave.
+    if (options.octave_span > 0)
+        split_wide_strata(members, size, options.octave_span, max_lrp_strata - (low_terms > 0 ? 1 : 0));
+    if (low_terms > 0) members.insert(members.begin(), std::move(low));
 
     const int count = int(members.size());
     const int shared_count = count - (low_terms > 0 ? 1 : 0), shared_cosines = options.cosines - low_terms;

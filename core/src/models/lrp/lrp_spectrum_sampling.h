@@ -8,6 +8,8 @@
 //     and its mirror always share a stratum. The least energetic bins holding 0.1 % of the
 //     energy in total are left out: an analytic spectrum's numerically-zero tails would
 //     otherwise make the last stratum cover the whole plane.
+//   * By example, a steep spectrum's weakest stratum (many octaves of little energy up to
+//     Nyquist, one tiny window whose spread is nearly white) is split by octave (`octave_span`).
 //   * Budget: J_S = J / L, the remainder to the most energetic strata; J_S ≤ the eroded
 //     stratum's bin count (a stratum of three peaks gets three cosines). By example, the lowest
 //     octave first gets a stratum of its own (`resolve`), one cosine per bin.
@@ -49,6 +51,11 @@ struct LrpSamplingOptions {
     /// carrying the longest wavelengths' energy upward. The other strata share the remaining cosines. 0 (analytic
     /// spectra): no such stratum (docs/models/lrp.md, "Low frequencies and the top octave").
     double resolve = 0;
+    /// > 0: a stratum spanning more than this many octaves of |f|, from where its energy begins
+    /// (10 % quantile of energy) to where its bins end (90 % quantile of bin count), whose bins
+    /// reach the top two octaves (≥ 1/8 cycle per pixel), is split into one stratum per octave,
+    /// within max_lrp_strata (the fit's 2.5; 0, analytic spectra: strata of equal energy only).
+    double octave_span = 0;
     /// k-means weighted by the power of each bin: sub-strata of similar energy rather than area.
     bool power_weighted = true;
     std::uint64_t seed = 1;   ///< k-means seeding
