@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 namespace stochtex {
 namespace {
@@ -481,6 +482,75 @@ TEST(TilingSharedExemplars, GravelKeepsItsHistogram)
     settings.units_per_pixel = 1.0 / d.pixels_per_unit;
     const ComparisonReport report = compare_images(photo, render(*make_texture(d), settings));
     for (int c = 0; c < 3; ++c) EXPECT_LT(report.w1_relative[c], 0.25) << c;
+}
+
+// ---- Automatic exemplar size --------------------------------------------------------------------
+
+/// Decorrelated channels of a size² photo: white noise, plus (ramp) a brightness ramp across it
+/// that no crop smaller than the photo holds the histogram of.
+std::array<std::vector<float>, 3> noise_channels(int size, bool ramp)
+{
+    std::mt19937 random(3);
+    std::normal_distribution<float> noise(0.0f, 0.1f);
+    std::array<std::vector<float>, 3> channels;
+    for (int c = 0; c < 3; ++c) {
+        channels[c].resize(std::size_t(size) * size);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                channels[c][std::size_t(y) * size + x] = noise(random) + (ramp && c == 0 ? float(x) / size : 0.0f);
+    }
+    return channels;
+}
+
+std::vector<int> candidate_sides(const std::array<std::vector<float>, 3>& channels, int size)
+{
+    std::vector<int> sides;
+    for (const SizedCrop& candidate : automatic_exemplar_candidates(channels, size, size)) {
+        EXPECT_EQ(candidate.width, candidate.height);
+        sides.push_back(candidate.width);
+    }
+    return sides;
+}
+
+TEST(TilingExemplarSize, LargerCandidatesOnlyWhereTheSmallerCropsMissThePhotosStatistics)
+{
+    // White noise: the 256² crop stands for the photo, no larger one is rendered.
+    EXPECT_EQ(candidate_sides(noise_channels(1024, false), 1024), std::vector<int>({256}));
+    // The ramp: 256² misses the histogram, so 512² is tried; 1024² is the whole photo.
+    EXPECT_EQ(candidate_sides(noise_channels(1024, true), 1024), std::vector<int>({256, 512}));
+    // A 512² photo holds 512² only once: 256² alone.
+    EXPECT_EQ(candidate_sides(noise_channels(512, true), 512), std::vector<int>({256}));
+}
+
+TEST(TilingExemplarSize, TheCandidatesRendersAreScoredAndTheModelChoiceRuleKeepsOne)
+{
+    const auto channels = noise_channels(1024, true);
+    const std::array<HistogramMap, 3> no_maps{};
+    // A scorer standing in for the render: the 512² candidate `gain` times closer to the photo,
+    // the file growing with the exemplar.
+    const auto chosen_side = [&](double gain) {
+        std::vector<int> scored;
+        const TilingCandidateScore score = [&](const ModelParameters& parameters, int max_side) {
+            EXPECT_EQ(max_side, 1024) << "the photo's size, up to 1024²";
+            const int side = parameters.get<TilingParameters>().exemplar.width;
+            scored.push_back(side);
+            ModelScore s;
+            s.penalty = side == 512 ? 1.0 / gain : 1.0;
+            s.bytes = (long long)side * side;
+            return s;
+        };
+        const TilingParameters fitted = fit_tiling_exemplar(channels, 1024, 1024, no_maps, automatic_exemplar_side, 8, score);
+        EXPECT_EQ(scored, std::vector<int>({256, 512}));
+        return fitted.exemplar.width;
+    };
+    EXPECT_EQ(chosen_side(2.0), 512);   // clearly closer: the larger exemplar
+    EXPECT_EQ(chosen_side(1.05), 256);  // within the tolerance: the smaller file
+    // A single candidate is not rendered.
+    const TilingCandidateScore unused = [](const ModelParameters&, int) -> ModelScore {
+        ADD_FAILURE() << "a single candidate was scored";
+        return {};
+    };
+    EXPECT_EQ(fit_tiling_exemplar(noise_channels(512, true), 512, 512, no_maps, automatic_exemplar_side, 8, unused).exemplar.width, 256);
 }
 
 }  // namespace

@@ -141,7 +141,13 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
 
     // Step 4: the model's own parameters (and its provenance options).
     report(0.5, "spectrum");
-    const FitInput input{channels, photo.width, photo.height, colour, description.histograms, band_count, options, std::move(model_options)};
+    const auto score = [&](const ModelParameters& parameters, int max_side) {
+        TextureDescription candidate = description;
+        candidate.parameters = parameters;
+        return score_against_photo(candidate, photo, max_side);
+    };
+    const FitInput input{channels, photo.width, photo.height, colour, description.histograms, band_count, options,
+                         std::move(model_options), score};
     description.parameters = model.fit(input, provenance);
     provenance.options.insert(provenance.options.end(),
                               {{"seed", std::to_string(options.seed)}, {"unit_size_m", format_number(options.unit_size_m)}});

@@ -21,41 +21,12 @@ namespace stochtex {
 
 namespace {
 
-/// The render each candidate is scored on is at most this many pixels a side (the photo's own
-/// pixel scale, from the texture's origin): large enough that the metrics see an octave below
-/// the features a 512² photo holds, small enough that the slowest model renders it in a
-/// fraction of a second. The photo itself is measured whole.
-constexpr int max_scoring_side = 384;
-
 struct Candidate {
     const Model* model = nullptr;
     ColourMode colour_mode = ColourMode::pca;
     TextureDescription description;
     ModelScore score;
 };
-
-ModelScore score_of(const Model& model, const TextureDescription& description, const Image& photo)
-{
-    RenderSettings settings;
-    settings.width = std::min(photo.width, max_scoring_side);
-    settings.height = std::min(photo.height, max_scoring_side);
-    settings.units_per_pixel = 1.0 / description.pixels_per_unit;
-    settings.threads = 1;  // the candidates run side by side
-    const Image synthesis = render(*make_texture(description), settings);
-    const ComparisonReport report = compare_images(photo, synthesis);
-    ModelScore score;
-    score.model = model.name();
-    score.colour = to_string(description.colour_mode);
-    score.penalty = fidelity_penalty(report);
-    score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
-    score.polar_log_psd_db = report.polar_log_psd_db;
-    score.w1_sigma = std::max({report.w1_relative[0], report.w1_relative[1], report.w1_relative[2]});
-    score.false_colour_rate = report.false_colour_rate;
-    score.gradient_orientation_degrees = report.gradient_orientation_degrees;
-    score.gradient_magnitude_w1 = report.gradient_magnitude_w1;
-    score.bytes = static_cast<long long>(format_stex(description).size());
-    return score;
-}
 
 /// The options a candidate is fitted with: the shared ones, and of the model options given only
 /// those it declares (`--impulses 8` is gabor's and lrp's, not wavelet's).
@@ -72,6 +43,41 @@ AnalysisOptions options_for(const Model& model, ColourMode colour_mode, const An
 }
 
 }  // namespace
+
+ModelScore score_against_photo(const TextureDescription& description, const Image& photo, int max_side)
+{
+    RenderSettings settings;
+    settings.width = std::min(photo.width, max_side);
+    settings.height = std::min(photo.height, max_side);
+    settings.units_per_pixel = 1.0 / description.pixels_per_unit;
+    settings.threads = 1;  // the candidates run side by side
+    const Image synthesis = render(*make_texture(description), settings);
+    const ComparisonReport report = compare_images(photo, synthesis);
+    ModelScore score;
+    score.model = description.model;
+    score.colour = to_string(description.colour_mode);
+    score.penalty = fidelity_penalty(report);
+    score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
+    score.polar_log_psd_db = report.polar_log_psd_db;
+    score.w1_sigma = std::max({report.w1_relative[0], report.w1_relative[1], report.w1_relative[2]});
+    score.false_colour_rate = report.false_colour_rate;
+    score.gradient_orientation_degrees = report.gradient_orientation_degrees;
+    score.gradient_magnitude_w1 = report.gradient_magnitude_w1;
+    score.bytes = static_cast<long long>(format_stex(description).size());
+    return score;
+}
+
+std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
+{
+    double best_penalty = std::numeric_limits<double>::infinity();
+    for (const ModelScore& s : scores) best_penalty = std::min(best_penalty, s.penalty);
+    std::size_t chosen = scores.size();
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        if (scores[i].penalty > best_penalty * (1 + model_choice_tolerance)) continue;
+        if (chosen == scores.size() || scores[i].bytes < scores[chosen].bytes) chosen = i;
+    }
+    return chosen;
+}
 
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
                                           const ProgressCallback& progress)
@@ -112,7 +118,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string label = model.name() + " (" + to_string(candidate.colour_mode) + ")";
         try {
             candidate.description = analyze(photo, options_for(model, candidate.colour_mode, options));
-            candidate.score = score_of(model, candidate.description, photo);
+            candidate.score = score_against_photo(candidate.description, photo, max_scoring_side);
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
         }
@@ -122,18 +128,12 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         progress(double(++finished) / double(candidates.size() + 1), stage.c_str());
     });
 
-    // Fidelity first; among the candidates within model_choice_tolerance of the best penalty
-    // (differences the metrics' own noise makes), the smallest file, then registry order.
-    double best_penalty = std::numeric_limits<double>::infinity();
-    for (const Candidate& c : candidates) best_penalty = std::min(best_penalty, c.score.penalty);
-    const Candidate* chosen = nullptr;
-    for (const Candidate& c : candidates) {
-        if (c.score.penalty > best_penalty * (1 + model_choice_tolerance)) continue;
-        if (!chosen || c.score.bytes < chosen->score.bytes) chosen = &c;
-    }
+    std::vector<ModelScore> scores;
+    for (const Candidate& c : candidates) scores.push_back(c.score);
+    const Candidate* chosen = &candidates[chosen_by_rule(scores)];
 
     TextureDescription result = chosen->description;
-    for (const Candidate& c : candidates) result.provenance.model_choice.push_back(c.score);
+    result.provenance.model_choice = scores;
     for (auto& [name, value] : result.provenance.options)
         if (name == "model") value = automatic_model;  // what was asked; description.model says what was chosen
     if (progress) progress(1.0, "done");

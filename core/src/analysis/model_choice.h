@@ -4,7 +4,26 @@
 
 #include <stochtex/analysis.h>
 
+#include <cstddef>
+#include <vector>
+
 namespace stochtex {
+
+/// The side the choice renders each candidate at, at most (the photo's own pixel scale, from the
+/// texture's origin): large enough that the metrics see an octave below the features a 512²
+/// photo holds, small enough that the slowest model renders it in a fraction of a second. The
+/// photo itself is measured whole.
+constexpr int max_scoring_side = 384;
+
+/// A fitted description's score as the choice measures it: its render (at the photo's pixel
+/// scale, at most max_side² pixels from the texture's origin, on one thread) against the whole
+/// photo. Also what a model's fit uses to choose among its own candidates (FitInput::score).
+ModelScore score_against_photo(const TextureDescription& description, const Image& photo, int max_side);
+
+/// The rule: the index of the score to keep of `scores` (not empty), the lowest penalty or,
+/// among those within model_choice_tolerance of it (differences the metrics' own noise makes),
+/// the smallest file, then the first.
+std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 
 /// analyze() with options.model == automatic_model lands here.
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,

@@ -48,6 +48,12 @@ struct FitInput {
     /// The model's own analysis options from options.model_options, checked against their
     /// declarations (absent ones: the declared default): name → the text as given.
     std::map<std::string, std::string> model_options;
+    /// Scores parameters the fit considers as `--model auto` scores a model
+    /// (analysis/model_choice.h: score_against_photo): the description being fitted, with these
+    /// parameters, rendered at most max_side² and compared with the photo. For a fit that
+    /// chooses among candidates of its own by what their renders look like (tiling's automatic
+    /// exemplar size).
+    std::function<ModelScore(const ModelParameters& parameters, int max_side)> score;
 };
 
 class Model {

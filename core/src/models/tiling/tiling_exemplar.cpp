@@ -1,5 +1,6 @@
 #include "models/tiling/tiling_exemplar.h"
 
+#include "analysis/model_choice.h"
 #include "colour/histogram_map.h"
 
 #include "spectra/fft.h"
@@ -50,24 +51,29 @@ constexpr int crops_with_spectrum_compared = 3;
 
 }  // namespace
 
+PhotoStatistics photo_statistics(const std::array<std::vector<float>, 3>& channels, int width, int height)
+{
+    PhotoStatistics whole;
+    const int step = std::max(1, int(std::sqrt(double(width) * height / 65536.0)));
+    for (int c = 0; c < 3; ++c) {
+        whole.sorted[c] = sorted_sample(channels[c], width, 0, 0, width, height, step);
+        double sum = 0, sum2 = 0;
+        for (double v : whole.sorted[c]) sum += v, sum2 += v * v;
+        const double n = double(whole.sorted[c].size());
+        whole.sigma[c] = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+    }
+    whole.main_psd = radial_psd(channels[0], width, height);
+    return whole;
+}
+
 RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                       int crop_width, int crop_height)
+                                       int crop_width, int crop_height, const PhotoStatistics& whole)
 {
     const CropOrigin centred{(width - crop_width) / 2, (height - crop_height) / 2};
     if (crop_width == width && crop_height == height) return {centred, 0, 0};
     const FidelityTargets targets;
-    // The whole photo's distributions, sampled to about 64k values; the crops' to about 16k.
-    const int whole_step = std::max(1, int(std::sqrt(double(width) * height / 65536.0)));
+    // The crops' distributions are sampled to about 16k values.
     const int crop_step = std::max(1, int(std::sqrt(double(crop_width) * crop_height / 16384.0)));
-    std::array<std::vector<double>, 3> whole;
-    std::array<double, 3> sigma{};
-    for (int c = 0; c < 3; ++c) {
-        whole[c] = sorted_sample(channels[c], width, 0, 0, width, height, whole_step);
-        double sum = 0, sum2 = 0;
-        for (double v : whole[c]) sum += v, sum2 += v * v;
-        const double n = double(whole[c].size());
-        sigma[c] = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
-    }
     // Mean, σ and histogram at once: each channel's W1 to the whole photo's, in its σ (the
     // decorrelated channels are uncorrelated over the photo; a crop's own correlation shows in
     // the channels' distributions of the rendered colours, which this sees through each axis).
@@ -85,21 +91,20 @@ RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& 
     for (const CropOrigin& origin : origins) {
         double w1 = 0;
         for (int c = 0; c < 3; ++c)
-            if (sigma[c] > 0)
+            if (whole.sigma[c] > 0)
                 w1 = std::max(w1, wasserstein1_of_sorted(sorted_sample(channels[c], width, origin.x, origin.y, crop_width,
                                                                        crop_height, crop_step),
-                                                         whole[c]) / sigma[c]);
+                                                         whole.sorted[c]) / whole.sigma[c]);
         scored.push_back({origin, w1 / targets.w1_sigma, 0});
     }
     // Then the spectrum of the main channel (the first: PCA's largest variance) for the best few,
     // each term in units of its fidelity target, as the automatic model choice weighs them.
     std::stable_sort(scored.begin(), scored.end(), [](const RepresentativeCrop& a, const RepresentativeCrop& b) { return a.w1_term < b.w1_term; });
     scored.resize(std::min<std::size_t>(scored.size(), crops_with_spectrum_compared));
-    const RadialPsd whole_psd = radial_psd(channels[0], width, height);
     for (RepresentativeCrop& s : scored) {
         const RadialPsd crop_psd = radial_psd(region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
                                               crop_width, crop_height);
-        s.spectrum_term = log_psd_distance_db(crop_psd, whole_psd) / targets.radial_log_psd_db;
+        s.spectrum_term = log_psd_distance_db(crop_psd, whole.main_psd) / targets.radial_log_psd_db;
     }
     return *std::min_element(scored.begin(), scored.end(),
                              [](const RepresentativeCrop& a, const RepresentativeCrop& b) { return a.total() < b.total(); });
@@ -109,6 +114,11 @@ namespace {
 
 /// The exemplar sides automatic sizing tries, smallest first; a file grows 4× a step.
 constexpr int automatic_exemplar_sides[] = {256, 512, 1024};
+/// Automatic sizing renders each candidate at the photo's size, up to this side: `--model auto`'s
+/// 384² render holds less than one 512² exemplar and cannot see it repeat (it rated rusted
+/// metal's 512² RGB exemplar best, whose full-size render is 1.86 dB off in radial spectrum
+/// where the 256² one's is 1.14 dB).
+constexpr int exemplar_scoring_side = 1024;
 
 /// The crop sides (powers of two) of an exemplar of at most `side` in a width × height photo.
 std::array<int, 2> crop_sides(int width, int height, int side)
@@ -118,19 +128,18 @@ std::array<int, 2> crop_sides(int width, int height, int side)
 
 }  // namespace
 
-SizedCrop automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height)
+std::vector<SizedCrop> automatic_exemplar_candidates(const std::array<std::vector<float>, 3>& channels, int width,
+                                                     int height)
 {
-    SizedCrop chosen;
+    const PhotoStatistics whole = photo_statistics(channels, width, height);
+    std::vector<SizedCrop> candidates;
     for (int side : automatic_exemplar_sides) {
-        // Past the first, a side is tried only where the photo holds it twice along each axis:
-        // an exemplar as large as its photo is a copy, not a sample, and always "representative".
         if (side != automatic_exemplar_sides[0] && 2 * side > std::min(width, height)) break;
         const std::array<int, 2> sides = crop_sides(width, height, side);
-        const SizedCrop candidate{sides[0], sides[1], representative_crop(channels, width, height, sides[0], sides[1])};
-        if (candidate.crop.representative()) return candidate;  // the smallest that stands for the photo
-        if (chosen.width == 0 || candidate.crop.total() < chosen.crop.total()) chosen = candidate;
+        candidates.push_back({sides[0], sides[1], representative_crop(channels, width, height, sides[0], sides[1], whole)});
+        if (candidates.back().crop.representative()) break;
     }
-    return chosen;  // none meets both targets: the closest
+    return candidates;
 }
 
 std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
@@ -145,20 +154,12 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
     return periodic;
 }
 
-TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                     const std::array<HistogramMap, 3>& histograms, int max_side, int bits)
+namespace {
+
+/// The parameters of one candidate crop (fit_tiling_exemplar's units).
+TilingParameters exemplar_of(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                             const std::array<HistogramMap, 3>& histograms, const SizedCrop& chosen, int bits)
 {
-    if (max_side != automatic_exemplar_side && (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side))
-        throw Error("tiling exemplar size must be in [" + std::to_string(min_tiling_exemplar_side) + ", " +
-                    std::to_string(max_tiling_exemplar_side) + "], got " + std::to_string(max_side));
-    if (bits != 8 && bits != 16) throw Error("tiling exemplar bits must be 8 or 16, got " + std::to_string(bits));
-    const std::array<int, 2> sides = crop_sides(width, height, max_side == automatic_exemplar_side ? automatic_exemplar_sides[0] : max_side);
-    if (sides[0] < min_tiling_exemplar_side || sides[1] < min_tiling_exemplar_side)
-        throw Error("image is " + std::to_string(width) + "x" + std::to_string(height) + ", too small for a tiling exemplar (at least " +
-                    std::to_string(min_tiling_exemplar_side) + "x" + std::to_string(min_tiling_exemplar_side) + ")");
-    const SizedCrop chosen = max_side == automatic_exemplar_side
-                                 ? automatic_exemplar_crop(channels, width, height)
-                                 : SizedCrop{sides[0], sides[1], representative_crop(channels, width, height, sides[0], sides[1])};
     const int crop_width = chosen.width, crop_height = chosen.height;
     const CropOrigin origin = chosen.crop.origin;
     std::vector<std::vector<float>> planes;
@@ -186,6 +187,38 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
     parameters.output = TilingOutput::colour;
     parameters.exemplar = quantise(planes, crop_width, crop_height, bits);
     return parameters;
+}
+
+}  // namespace
+
+TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
+                                     const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
+                                     const TilingCandidateScore& score)
+{
+    if (max_side != automatic_exemplar_side && (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side))
+        throw Error("tiling exemplar size must be in [" + std::to_string(min_tiling_exemplar_side) + ", " +
+                    std::to_string(max_tiling_exemplar_side) + "], got " + std::to_string(max_side));
+    if (bits != 8 && bits != 16) throw Error("tiling exemplar bits must be 8 or 16, got " + std::to_string(bits));
+    const std::array<int, 2> sides = crop_sides(width, height, max_side == automatic_exemplar_side ? automatic_exemplar_sides[0] : max_side);
+    if (sides[0] < min_tiling_exemplar_side || sides[1] < min_tiling_exemplar_side)
+        throw Error("image is " + std::to_string(width) + "x" + std::to_string(height) + ", too small for a tiling exemplar (at least " +
+                    std::to_string(min_tiling_exemplar_side) + "x" + std::to_string(min_tiling_exemplar_side) + ")");
+    if (max_side != automatic_exemplar_side) {
+        const SizedCrop crop{sides[0], sides[1],
+                             representative_crop(channels, width, height, sides[0], sides[1], photo_statistics(channels, width, height))};
+        return exemplar_of(channels, width, height, histograms, crop, bits);
+    }
+    // Automatic: each candidate fitted, rendered and scored as `--model auto` scores models,
+    // and kept by its rule (the smaller exemplar where the renders are as faithful).
+    const std::vector<SizedCrop> candidates = automatic_exemplar_candidates(channels, width, height);
+    if (candidates.size() == 1) return exemplar_of(channels, width, height, histograms, candidates[0], bits);
+    std::vector<TilingParameters> fitted;
+    std::vector<ModelScore> scores;
+    for (const SizedCrop& candidate : candidates) {
+        fitted.push_back(exemplar_of(channels, width, height, histograms, candidate, bits));
+        scores.push_back(score(ModelParameters(fitted.back()), exemplar_scoring_side));
+    }
+    return fitted[chosen_by_rule(scores)];
 }
 
 }  // namespace stochtex

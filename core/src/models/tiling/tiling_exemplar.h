@@ -6,7 +6,10 @@
 #include <stochtex/texture_description.h>
 #include <stochtex/models/tiling_parameters.h>
 
+#include <stochtex/metrics.h>
+
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace stochtex {
@@ -30,40 +33,61 @@ struct RepresentativeCrop {
     double total() const { return w1_term + spectrum_term; }
 };
 
+/// What crops are measured against, computed once per photo (not once per crop size tried):
+/// each decorrelated channel's sorted values (sampled to about 64k) and σ, and the main
+/// channel's radial spectrum.
+struct PhotoStatistics {
+    std::array<std::vector<double>, 3> sorted;
+    std::array<double, 3> sigma{};
+    RadialPsd main_psd;
+};
+PhotoStatistics photo_statistics(const std::array<std::vector<float>, 3>& channels, int width, int height);
+
 /// The crop_width × crop_height crop of the decorrelated channels that best stands for the whole
-/// photo: of positions evenly spaced over it (the centred one included, and kept on ties), the
-/// one with the lowest sum of the two terms. A photo whose centre is lighter or smoother than
-/// the rest no longer gives a texture that is.
+/// photo (`whole`: photo_statistics of the same channels): of positions evenly spaced over it
+/// (the centred one included, and kept on ties), the one with the lowest sum of the two terms.
+/// A photo whose centre is lighter or smoother than the rest no longer gives a texture that is.
 RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                       int crop_width, int crop_height);
+                                       int crop_width, int crop_height, const PhotoStatistics& whole);
 
 /// fit_tiling_exemplar's max_side for "auto" (`--exemplar-size auto`, the default).
 constexpr int automatic_exemplar_side = 0;
 
-/// The crop sides automatic sizing keeps: the smallest of 256², 512², 1024² (the larger ones only
-/// where the photo holds them twice along each axis) whose representative crop is on both
-/// targets; where none is, the closest. A photo whose large-scale variation a 256² crop misses
-/// (karst rock's plates) gets the larger exemplar it needs, one a 256² crop serves keeps its
-/// 4× smaller file.
+/// A crop size and its most representative crop.
 struct SizedCrop {
     int width = 0, height = 0;
     RepresentativeCrop crop;
 };
-SizedCrop automatic_exemplar_crop(const std::array<std::vector<float>, 3>& channels, int width, int height);
+
+/// The crops automatic sizing chooses among, smallest first, each at its most representative
+/// position: 256², then 512² and 1024² where the photo holds them twice along each axis (an
+/// exemplar as large as its photo is a copy, not a sample), up to the first whose statistics
+/// stand for the photo (representative()). A larger one is tried only where the smaller crops'
+/// statistics miss the targets (karst rock's plates are larger than 256²): a photo a 256² crop
+/// serves keeps its 4× smaller file without a render, as concrete's RGB exemplar does.
+std::vector<SizedCrop> automatic_exemplar_candidates(const std::array<std::vector<float>, 3>& channels, int width,
+                                                     int height);
 
 /// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
 /// (Moisan's periodic component, which keeps the crop's mean).
 std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
                                  CropOrigin origin = {});
 
+/// Scores a candidate exemplar's parameters by its render against the photo (FitInput::score).
+using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, int max_side)>;
+
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
 /// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
-/// representative crop (representative_crop) of at most max_side² pixels (automatic_exemplar_side:
-/// automatic_exemplar_crop's size), periodic, at `bits` bits. A channel with a map is stored
-/// in standard-normal units by the crop's own ranks (the map's input), the others in channel
-/// units with the whole channel's mean and σ, so the texture's histograms are the photo's and
-/// the texture passes stored values to ColourMapping unscaled.
+/// representative crop (representative_crop) of at most max_side² pixels, periodic, at `bits`
+/// bits. max_side automatic_exemplar_side: of automatic_exemplar_candidates, the one whose render
+/// `score` rates best by `--model auto`'s rule (fidelity first, within its tolerance the
+/// smallest file); a single candidate is taken unrendered. Crop statistics alone chose 512² for
+/// rusted metal, whose RGB render is then 1.86 dB off in radial spectrum where 256²'s is 1.14 dB.
+/// A channel with a map is stored in standard-normal units by the crop's own ranks (the map's
+/// input), the others in channel units with the whole channel's mean and σ, so the texture's
+/// histograms are the photo's and the texture passes stored values to ColourMapping unscaled.
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
-                                     const std::array<HistogramMap, 3>& histograms, int max_side, int bits);
+                                     const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
+                                     const TilingCandidateScore& score);
 
 }  // namespace stochtex

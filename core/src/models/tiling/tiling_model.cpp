@@ -33,8 +33,9 @@ public:
         declare_analysis_options(
             {integer_option("exemplar-size", 16, 1024,
                             {"auto", "px",
-                             "largest exemplar side (sides powers of two); auto: the smallest of 256, 512, 1024 whose most "
-                             "representative crop is within the fidelity targets of the whole photo (W1, radial spectrum)"},
+                             "largest exemplar side (sides powers of two); auto: 256, and 512, 1024 where smaller crops' "
+                             "statistics miss the photo's (and it holds them twice per side); of those, the one whose "
+                             "render --model auto's rule rates best (fidelity first, then the smaller file)"},
                             "auto"),
              choice_option("exemplar-bits", {"8", "16"}, {"8", "bits", "bits per stored exemplar sample"})});
     }
@@ -55,7 +56,7 @@ public:
         const int bits = std::stoi(input.model_options.at("exemplar-bits"));
         provenance.options.insert(provenance.options.end(), {{"exemplar_size", size_text},
                                                              {"exemplar_bits", std::to_string(bits)}});
-        return fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits);
+        return fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits, input.score);
     }
 
     ModelParameters morph(const TextureDescription&, const TextureDescription&, double) const override
