@@ -26,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 
@@ -206,6 +207,29 @@ TEST(ColourMapFilter, CovarianceAndInterpolationApproachTheGaussianExpectation)
     const Rgb exact = map.point(0.3, 0.7);
     for (ColourMapMethod method : {ColourMapMethod::reference, ColourMapMethod::interpolated, ColourMapMethod::covariance})
         EXPECT_LT(colour_distance(map.filtered(0.3, 0.7, {}, method), exact), 1e-6);
+}
+
+TEST(ColourMapFilter, APerfectCorrelationIsTheLimitOfNearlyPerfectOnes)
+{
+    // A pair indexing the map by one noise twice (var_a = var_b = |cov|) has no axis-aligned
+    // blur left: the lookup reads the unblurred table alone. Where the split's rounding used to
+    // leave d ~ 1e-16 var (a blur level ~1e-8 read from four tables), the result must be what a
+    // correlation short of perfect by that much gives: within 1e-6 in linear RGB.
+    const ColourMapFilter map = linear_map("rgb");
+    double worst = 0;
+    for (double sigma : {0.002, 0.01, 0.05, 0.15})
+        for (double sign : {1.0, -1.0})
+            for (double ma : {0.2, 0.5, 0.71})
+                for (double mb : {0.3, 0.55}) {
+                    const double v = sigma * sigma;
+                    const PairCovariance perfect{v, sign * v, v}, nearly{v, sign * v * (1 - 1e-15), v};
+                    const ColourMapMethod method = ColourMapMethod::covariance;
+                    const Rgb a = map.lookup(ma, mb, perfect, method), b = map.lookup(ma, mb, nearly, method);
+                    worst = std::max(worst, double(colour_distance(a, b)));
+                    EXPECT_LT(colour_distance(a, map.filtered(ma, mb, perfect, method)), 1e-6);
+                }
+    EXPECT_LT(worst, 1e-6);
+    std::printf("perfect vs nearly perfect correlation: max %.3g (linear RGB)\n", worst);
 }
 
 /// Mean ‖Ŝ(μ̂, σ̂) − S̄‖ over k×k blocks for one estimator and lookup method.

@@ -209,7 +209,12 @@ ColourMapFilter::Line ColourMapFilter::line(double mean_a, double mean_b, const 
     cov = std::clamp(cov, -bound, bound);
     line.alpha = std::sqrt(std::abs(cov) * std::sqrt(var_a / var_b));
     line.beta = std::sqrt(std::abs(cov) * std::sqrt(var_b / var_a)) * (cov < 0 ? -1 : 1);
-    const double d_a = std::max(0.0, var_a - line.alpha * line.alpha), d_b = std::max(0.0, var_b - line.beta * line.beta);
+    // d from the moments directly (α² = |cov|·√(var_a/var_b)), not from α squared: a perfect
+    // correlation (var_a = var_b = |cov|, a colour map indexed by one noise twice) then gives
+    // d = 0 exactly, one table, where √(x)² − x left d ~ 1e-16 var — a blur level of ~1e-8,
+    // which costs four tables per node for a weight that rounds away.
+    const double d_a = std::max(0.0, var_a - std::abs(cov) * std::sqrt(var_a / var_b));
+    const double d_b = std::max(0.0, var_b - std::abs(cov) * std::sqrt(var_b / var_a));
     line.level_a = fractional_level(std::sqrt(d_a)), line.level_b = fractional_level(std::sqrt(d_b));
     // Nodes along u no farther apart than about a texel or the blur already there.
     const double length = std::hypot(line.alpha, line.beta);
