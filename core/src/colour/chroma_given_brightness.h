@@ -23,7 +23,8 @@
 namespace stochtex {
 
 /// Fits the curves to a photo's decorrelated channels (pca mode) and replaces channels 1 and 2
-/// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)), which the
+/// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)) (scale_c in
+/// units of its RMS over the photo, so that r_c keeps its channel's typical spread), which the
 /// histogram maps and the models' spectra are then fitted to. Knots are uniform in
 /// [−z_max, z_max]; each is a Gaussian-kernel regression over its neighbourhood (bandwidth: the
 /// knot spacing). Returns an empty description (channels unchanged) when brightness or both
