@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <array>
 #include <random>
 #include <string>
 
@@ -46,40 +47,42 @@ std::vector<std::string> analysable_models()
     return names;
 }
 
+/// A size² RGB photo whose pixel (x, y) is pixel(x, y, noise) (noise: a standard-normal draw).
+template <class Pixel>
+Image synthetic_photo(int size, unsigned seed, const Pixel& pixel)
+{
+    std::mt19937 random(seed);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    const auto noise = [&] { return normal(random); };
+    Image photo(size, size, 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const std::array<float, 3> rgb = pixel(x, y, noise);
+            for (int c = 0; c < 3; ++c) photo.at(x, y, c) = rgb[c];
+        }
+    return photo;
+}
+
 /// Stripes across x (period 8 px, slightly wandering) over a little isotropic noise, tinted:
 /// strongly oriented, which the isotropic models cannot reproduce.
 Image striped_photo(int size)
 {
-    std::mt19937 random(7);
-    std::normal_distribution<float> noise(0.0f, 0.03f);
-    Image photo(size, size, 3);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const double phase = 2 * M_PI * (x / 8.0 + 0.3 * std::sin(2 * M_PI * y / 97.0));
-            const float v = 0.4f + 0.2f * float(std::sin(phase)) + noise(random);
-            photo.at(x, y, 0) = v;
-            photo.at(x, y, 1) = 0.9f * v;
-            photo.at(x, y, 2) = 0.7f * v;
-        }
-    return photo;
+    return synthetic_photo(size, 7, [](int x, int y, const auto& noise) {
+        const double phase = 2 * M_PI * (x / 8.0 + 0.3 * std::sin(2 * M_PI * y / 97.0));
+        const float v = 0.4f + 0.2f * float(std::sin(phase)) + 0.03f * noise();
+        return std::array<float, 3>{v, 0.9f * v, 0.7f * v};
+    });
 }
 
 /// Grains whose hue follows their brightness (dark ones blue-grey, bright ones yellow), as on
 /// gravel: independent channels would make colours the photo does not have.
 Image two_hue_photo(int size)
 {
-    std::mt19937 random(11);
-    std::normal_distribution<float> noise(0.0f, 1.0f);
-    Image photo(size, size, 3);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const float t = 0.5f + 0.25f * noise(random);  // brightness
-            const float hue = t + 0.05f * noise(random);
-            photo.at(x, y, 0) = 0.2f + 0.6f * t * hue;
-            photo.at(x, y, 1) = 0.2f + 0.5f * t;
-            photo.at(x, y, 2) = 0.5f - 0.3f * t * hue + 0.02f * noise(random);
-        }
-    return photo;
+    return synthetic_photo(size, 11, [](int, int, const auto& noise) {
+        const float t = 0.5f + 0.25f * noise();  // brightness
+        const float hue = t + 0.05f * noise();
+        return std::array<float, 3>{0.2f + 0.6f * t * hue, 0.2f + 0.5f * t, 0.5f - 0.3f * t * hue + 0.02f * noise()};
+    });
 }
 
 TextureDescription analyse_automatically(const Image& photo)
