@@ -18,7 +18,7 @@ namespace stex_cli {
 struct AnalyzeCommand {
     std::string photo, output;
     std::string model = stochtex::automatic_model, colour = "pca", histogram = "auto";
-    std::string joint_colour = "off";
+    std::string joint_colour = "auto";
     std::string colour_space;  // empty: what the file says, else sRGB
     int knots = 10;
     int bands = 0;

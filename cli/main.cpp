@@ -72,8 +72,9 @@ int main(int argc, char** argv)
                   "Joint colour (pca colour; wavelet, gabor and lrp): on ties each chroma axis's value and spread to "
                   "brightness, as in the photo (independent channels make colours the photo never had: gravel's "
                   "false-colour rate 14.7 % -> 1.7 %); off keeps three independent channels, which POV-Ray's "
-                  "procedural mode needs (stex pov bakes a joint-colour texture)")
-        ->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+                  "procedural mode needs (stex pov bakes a joint-colour texture); auto: with --model auto each of "
+                  "those models is fitted both ways and the scores decide, a named model is fitted without")
+        ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
     a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
     a->add_option("--bands", analyze.bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();

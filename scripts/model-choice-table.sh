@@ -26,9 +26,10 @@ for photo in "$exemplars"/*.png; do
     python3 - "$work/$name-auto.stex" "$name" "$(echo "$t1 - $t0" | bc)" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-label = lambda model, colour: model if colour == "pca" else model + "/" + colour
-scores = {label(s["model"], s["colour"]): s for s in d["provenance"]["model_choice"]}
-chosen = label(d["model"], d["colour"]["mode"])
+def label(model, colour, joint):
+    return model + ("" if colour == "pca" else "/" + colour) + ("+joint" if joint else "")
+scores = {label(s["model"], s["colour"], s.get("joint_colour", False)): s for s in d["provenance"]["model_choice"]}
+chosen = label(d["model"], d["colour"]["mode"], "chroma_given_brightness" in d["colour"])
 c = scores[chosen]
 f = lambda v, p: "n/a" if v is None else ("%." + str(p) + "f") % v
 print("| %s | **%s** | %s | %s, %s, %s, %s %%, %s, %s | %d | %.1f |" % (
@@ -40,13 +41,14 @@ PY
     [ -n "$sheet" ] || continue
     chosen="$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["model"])' "$work/$name-auto.stex")"
     chosen_colour="$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["colour"]["mode"])' "$work/$name-auto.stex")"
+    chosen_joint="$(python3 -c 'import json,sys; print("on" if "chroma_given_brightness" in json.load(open(sys.argv[1]))["colour"] else "off")' "$work/$name-auto.stex")"
     # The photo's top-left 128² and each model's render of the same size, sRGB.
     oiiotool "$photo" --cut 128x128+0+0 -o "$work/$name-0.png"
     row=("$work/$name-0.png")
     for model in "${models[@]}"; do
-        colour=pca
-        [ "$model" = "$chosen" ] && colour="$chosen_colour"  # the chosen candidate as it was chosen
-        "$stex" analyze "$photo" -o "$work/$name-$model.stex" --model "$model" --colour "$colour" >/dev/null
+        colour=pca joint=off
+        [ "$model" = "$chosen" ] && colour="$chosen_colour" joint="$chosen_joint"  # the chosen candidate as it was chosen
+        "$stex" analyze "$photo" -o "$work/$name-$model.stex" --model "$model" --colour "$colour" --joint-colour "$joint" >/dev/null
         "$stex" render "$work/$name-$model.stex" -o "$work/$name-$model.png" --size 128x128 >/dev/null
         if [ "$model" = "$chosen" ]; then
             oiiotool "$work/$name-$model.png" --cut 124x124+2+2 --fit:pad=1 128x128 --ch R,G,B \

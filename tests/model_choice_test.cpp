@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <array>
 #include <random>
 #include <string>
 
@@ -46,22 +47,42 @@ std::vector<std::string> analysable_models()
     return names;
 }
 
+/// A size² RGB photo whose pixel (x, y) is pixel(x, y, noise) (noise: a standard-normal draw).
+template <class Pixel>
+Image synthetic_photo(int size, unsigned seed, const Pixel& pixel)
+{
+    std::mt19937 random(seed);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    const auto noise = [&] { return normal(random); };
+    Image photo(size, size, 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const std::array<float, 3> rgb = pixel(x, y, noise);
+            for (int c = 0; c < 3; ++c) photo.at(x, y, c) = rgb[c];
+        }
+    return photo;
+}
+
 /// Stripes across x (period 8 px, slightly wandering) over a little isotropic noise, tinted:
 /// strongly oriented, which the isotropic models cannot reproduce.
 Image striped_photo(int size)
 {
-    std::mt19937 random(7);
-    std::normal_distribution<float> noise(0.0f, 0.03f);
-    Image photo(size, size, 3);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const double phase = 2 * M_PI * (x / 8.0 + 0.3 * std::sin(2 * M_PI * y / 97.0));
-            const float v = 0.4f + 0.2f * float(std::sin(phase)) + noise(random);
-            photo.at(x, y, 0) = v;
-            photo.at(x, y, 1) = 0.9f * v;
-            photo.at(x, y, 2) = 0.7f * v;
-        }
-    return photo;
+    return synthetic_photo(size, 7, [](int x, int y, const auto& noise) {
+        const double phase = 2 * M_PI * (x / 8.0 + 0.3 * std::sin(2 * M_PI * y / 97.0));
+        const float v = 0.4f + 0.2f * float(std::sin(phase)) + 0.03f * noise();
+        return std::array<float, 3>{v, 0.9f * v, 0.7f * v};
+    });
+}
+
+/// Grains whose hue follows their brightness (dark ones blue-grey, bright ones yellow), as on
+/// gravel: independent channels would make colours the photo does not have.
+Image two_hue_photo(int size)
+{
+    return synthetic_photo(size, 11, [](int, int, const auto& noise) {
+        const float t = 0.5f + 0.25f * noise();  // brightness
+        const float hue = t + 0.05f * noise();
+        return std::array<float, 3>{0.2f + 0.6f * t * hue, 0.2f + 0.5f * t, 0.5f - 0.3f * t * hue + 0.02f * noise()};
+    });
 }
 
 TextureDescription analyse_automatically(const Image& photo)
@@ -134,6 +155,44 @@ TEST(ModelChoice, LeftOpenTheColourModeIsChosenToo)
     EXPECT_NE(std::find(got.begin(), got.end(), "tiling/rgb"), got.end());
 }
 
+TEST(ModelChoice, LeftOpenJointColourIsTriedBothWays)
+{
+    // `stex analyze` without --joint-colour: each model that can carry joint colour is fitted
+    // with and without it in pca colour; the table and the file say which is which, and the
+    // chosen texture has joint colour exactly when its row does.
+    AnalysisOptions options;
+    options.model = automatic_model;
+    options.try_colour_modes = true;
+    options.try_joint_colour = true;
+    const TextureDescription chosen = analyze(two_hue_photo(64), options);
+    std::vector<std::string> expected;
+    for (const ModelInfo* model : registered_model_infos())
+        if (model->capabilities.analysis)
+            for (const std::string& mode : model->automatic_colour_modes) {
+                expected.push_back(model->name + "/" + mode);
+                if (mode == "pca" && model->capabilities.joint_colour) expected.push_back(model->name + "/pca+joint");
+            }
+    std::vector<std::string> got;
+    bool chosen_row_found = false;
+    for (const ModelScore& s : chosen.provenance.model_choice) {
+        got.push_back(s.model + "/" + s.colour + (s.joint_colour ? "+joint" : ""));
+        if (s.model == chosen.model && s.colour == to_string(chosen.colour_mode) &&
+            s.joint_colour == chosen.chroma_given_brightness.enabled())
+            chosen_row_found = true;
+    }
+    EXPECT_EQ(got, expected);
+    EXPECT_TRUE(chosen_row_found) << format_model_choice(chosen);
+    EXPECT_TRUE(test::contains(format_model_choice(chosen), "pca+joint"));
+    // The flag survives the file, written only where it is set.
+    const std::string text = format_stex(chosen);
+    EXPECT_TRUE(test::contains(text, "\"joint_colour\": true"));
+    EXPECT_FALSE(test::contains(text, "\"joint_colour\": false"));
+    EXPECT_EQ(format_stex(parse_stex(text, "auto.stex")), text);
+    // A photo whose chroma does not vary has no joint colour to fit: no second, identical row.
+    const TextureDescription grey = analyze(striped_photo(64), options);
+    for (const ModelScore& s : grey.provenance.model_choice) EXPECT_FALSE(s.joint_colour) << s.model;
+}
+
 TEST(ModelChoice, TheScoresSurviveTheFileAndAreChecked)
 {
     TextureDescription chosen = analyse_automatically(striped_photo(64));
@@ -189,12 +248,14 @@ TEST(ModelChoiceSharedExemplars, TheChoiceMeetsTheFidelityTargetsOnEveryPhoto)
         AnalysisOptions options;  // what `stex analyze photo.png -o t.stex` asks for
         options.model = automatic_model;
         options.try_colour_modes = true;
+        options.try_joint_colour = true;
         const TextureDescription chosen = analyze(photo, options);
         const std::string table = format_model_choice(chosen);
         double best_polar = std::numeric_limits<double>::infinity();
         const ModelScore* score = nullptr;
         for (const ModelScore& s : chosen.provenance.model_choice) {
-            const bool is_chosen = s.model == chosen.model && s.colour == to_string(chosen.colour_mode);
+            const bool is_chosen = s.model == chosen.model && s.colour == to_string(chosen.colour_mode) &&
+                                   s.joint_colour == chosen.chroma_given_brightness.enabled();
             if (is_chosen) score = &s;
             if (is_chosen || (s.w1_sigma <= targets.w1_sigma && s.false_colour_rate <= targets.false_colour_rate))
                 best_polar = std::min(best_polar, s.polar_log_psd_db);
@@ -208,8 +269,9 @@ TEST(ModelChoiceSharedExemplars, TheChoiceMeetsTheFidelityTargetsOnEveryPhoto)
         settings.units_per_pixel = 1.0 / chosen.pixels_per_unit;
         const ComparisonReport report = compare_images(photo, render(*make_texture(chosen), settings));
         const double radial = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
-        std::printf("%s: %s/%s, radial %.2f dB, W1 %.3f %.3f %.3f sigma, false colour %.2f %%, 2D %.2f dB\n%s",
-                    path.filename().string().c_str(), chosen.model.c_str(), to_string(chosen.colour_mode), radial,
+        std::printf("%s: %s/%s%s, radial %.2f dB, W1 %.3f %.3f %.3f sigma, false colour %.2f %%, 2D %.2f dB\n%s",
+                    path.filename().string().c_str(), chosen.model.c_str(), to_string(chosen.colour_mode),
+                    chosen.chroma_given_brightness.enabled() ? "+joint" : "", radial,
                     report.w1_relative[0], report.w1_relative[1], report.w1_relative[2], 100 * report.false_colour_rate,
                     report.polar_log_psd_db, table.c_str());
         EXPECT_LE(radial, targets.radial_log_psd_db) << table;

@@ -36,9 +36,13 @@ struct AnalysisOptions {
     bool try_colour_modes = false;
     /// Joint colour (pca mode, models with Gaussian channels): the chroma channels conditioned on
     /// brightness (TextureDescription::chroma_given_brightness), which keeps colours the photo
-    /// never had from appearing. Off by default (and in `stex analyze` unless --joint-colour on)
-    /// until POV-Ray's procedural mode and the OSL shaders can express it.
+    /// never had from appearing. Off by default: POV-Ray's procedural mode cannot express it,
+    /// and it costs some models spectrum fidelity on some photos (docs/models/README.md).
     bool joint_colour = false;
+    /// automatic_model only: fit each model that can carry joint colour both with and without it
+    /// (pca colour), so that the scores decide — for when the user did not choose
+    /// (`stex analyze --joint-colour auto`, its default). Overrides joint_colour for those models.
+    bool try_joint_colour = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports

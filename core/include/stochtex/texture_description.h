@@ -114,6 +114,7 @@ struct ImageLayout {
 struct ModelScore {
     std::string model;
     std::string colour = "pca";               ///< the colour mode it was fitted with
+    bool joint_colour = false;                ///< with joint colour (chroma given brightness)
     double penalty = 0;                       ///< fidelity_penalty(): lower is closer to the photo
     double radial_log_psd_db = 0;             ///< mean over RGB
     double polar_log_psd_db = 0;              ///< 2D (oriented) log-PSD distance of luma

@@ -24,17 +24,21 @@ namespace {
 struct Candidate {
     const Model* model = nullptr;
     ColourMode colour_mode = ColourMode::pca;
+    bool joint_colour = false;
     TextureDescription description;
     ModelScore score;
 };
 
 /// The options a candidate is fitted with: the shared ones, and of the model options given only
 /// those it declares (`--impulses 8` is gabor's and lrp's, not wavelet's).
-AnalysisOptions options_for(const Model& model, ColourMode colour_mode, const AnalysisOptions& options)
+AnalysisOptions options_for(const Model& model, ColourMode colour_mode, bool joint_colour,
+                            const AnalysisOptions& options)
 {
     AnalysisOptions own = options;
     own.model = model.name();
     own.colour_mode = colour_mode;
+    own.joint_colour = joint_colour;
+    own.try_joint_colour = false;
     own.model_options.clear();
     for (const auto& option : options.model_options)
         for (const AnalysisOption& declared : model.analysis_options())
@@ -56,6 +60,7 @@ ModelScore score_against_photo(const TextureDescription& description, const Imag
     ModelScore score;
     score.model = description.model;
     score.colour = to_string(description.colour_mode);
+    score.joint_colour = description.chroma_given_brightness.enabled();
     score.penalty = fidelity_penalty(report);
     score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
     score.polar_log_psd_db = report.polar_log_psd_db;
@@ -94,9 +99,15 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
             for (const std::string& name : model->info().automatic_colour_modes) modes.push_back(colour_mode_from_string(name));
         }
         for (ColourMode mode : modes) {
-            Candidate& candidate = candidates.emplace_back();
-            candidate.model = model;
-            candidate.colour_mode = mode;
+            // Joint colour, where the caller left it open and the model can carry it: both ways
+            // (it removes false colour, and on some photos costs spectrum fidelity).
+            const bool both = options.try_joint_colour && mode == ColourMode::pca && model->info().capabilities.joint_colour;
+            for (bool joint : both ? std::vector<bool>{false, true} : std::vector<bool>{options.joint_colour}) {
+                Candidate& candidate = candidates.emplace_back();
+                candidate.model = model;
+                candidate.colour_mode = mode;
+                candidate.joint_colour = joint;
+            }
         }
         for (const AnalysisOption& option : model->analysis_options()) declared_somewhere.insert(option.info.key);
     }
@@ -115,9 +126,11 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         Candidate& candidate = candidates[i];
         const Model& model = *candidate.model;
-        const std::string label = model.name() + " (" + to_string(candidate.colour_mode) + ")";
+        const std::string label = model.name() + " (" + to_string(candidate.colour_mode) +
+                                  (candidate.joint_colour ? ", joint colour" : "") + ")";
         try {
-            candidate.description = analyze(photo, options_for(model, candidate.colour_mode, options));
+            candidate.description =
+                analyze(photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options));
             candidate.score = score_against_photo(candidate.description, photo, max_scoring_side);
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
@@ -127,6 +140,14 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string stage = label + " scored";
         progress(double(++finished) / double(candidates.size() + 1), stage.c_str());
     });
+
+    // A photo whose chroma does not vary has no joint colour to fit: that candidate is the plain
+    // one again, and is dropped rather than listed twice.
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [](const Candidate& c) {
+                                        return c.joint_colour && !c.description.chroma_given_brightness.enabled();
+                                    }),
+                     candidates.end());
 
     std::vector<ModelScore> scores;
     for (const Candidate& c : candidates) scores.push_back(c.score);
@@ -152,13 +173,15 @@ std::string format_model_choice(const TextureDescription& description)
     };
     char line[256];
     std::string text;
-    std::snprintf(line, sizeof line, "%-8s %-6s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
+    std::snprintf(line, sizeof line, "%-8s %-10s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
                   "radial dB", "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
     text += line;
     for (const ModelScore& s : scores) {
-        const bool chosen = s.model == description.model && s.colour == to_string(description.colour_mode);
-        std::snprintf(line, sizeof line, "%-8s %-6s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
-                      s.colour.c_str(), s.penalty,
+        const bool chosen = s.model == description.model && s.colour == to_string(description.colour_mode) &&
+                            s.joint_colour == description.chroma_given_brightness.enabled();
+        const std::string colour = s.colour + (s.joint_colour ? "+joint" : "");
+        std::snprintf(line, sizeof line, "%-8s %-10s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
+                      colour.c_str(), s.penalty,
                       value(s.radial_log_psd_db, "%.2f").c_str(), value(s.polar_log_psd_db, "%.2f").c_str(),
                       value(s.w1_sigma, "%.3f").c_str(),
                       (value(100 * s.false_colour_rate, "%.2f") + " %").c_str(),

@@ -69,6 +69,23 @@ ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>,
         }
     }
 
+    // The residuals keep their channel's typical spread (the RMS of scale_c over the photo), not
+    // a unit one: the scale curves are divided by it. The texture is the same either way, but
+    // models that fit all channels' spectra together (gabor's orientations, lrp's strata) weigh
+    // each by its energy, and unit-spread chroma residuals (concrete's chroma σ ~ 0.01 against
+    // brightness's 0.06) would outweigh brightness there and set its orientations and strata.
+    const ChromaConditioning fitted(curves);
+    double spread_squared[2] = {0, 0};
+    for (std::size_t i = 0; i < n; ++i) {
+        double location[2], scale[2];
+        fitted.curves_at(u[i], 0, location, scale);
+        for (int c = 0; c < 2; ++c) spread_squared[c] += scale[c] * scale[c];
+    }
+    for (int c = 0; c < 2; ++c) {
+        const double spread = std::sqrt(spread_squared[c] / double(n));
+        for (double& scale : curves.scale[c]) scale /= spread;
+    }
+
     const ChromaConditioning conditioning(curves);
     for (std::size_t i = 0; i < n; ++i) {
         double location[2], scale[2];

@@ -23,7 +23,8 @@
 namespace stochtex {
 
 /// Fits the curves to a photo's decorrelated channels (pca mode) and replaces channels 1 and 2
-/// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)), which the
+/// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)) (scale_c in
+/// units of its RMS over the photo, so that r_c keeps its channel's typical spread), which the
 /// histogram maps and the models' spectra are then fitted to. Knots are uniform in
 /// [−z_max, z_max]; each is a Gaussian-kernel regression over its neighbourhood (bandwidth: the
 /// knot spacing). Returns an empty description (channels unchanged) when brightness or both
@@ -47,11 +48,12 @@ void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis);
 /// is exact when the knots coincide (they do for every analysis: 49 knots on [−3, 3]).
 ///
 /// Why not one texture with joint colour and one without, the latter as location 0, scale 1? That
-/// is its colour stage (y_c = 0 + 1 · r_c), but its chroma maps give values (σ ~ 0.01 on concrete) where the
-/// other's give unit-spread residuals: interpolating the scales and the maps separately multiplies
-/// two midpoints, and at t = 0.5 the chroma spread came out 8× either texture's (σ 0.19–0.23
-/// against 0.027). Rescaling one side's residual needs its histogram map or its model's channel
-/// gain, which not every texture has in a model-independent form.
+/// is its colour stage (y_c = 0 + 1 · r_c), but its chroma maps give the chroma values themselves
+/// where the other's give residuals in units of its own scale curve: interpolating the scales and
+/// the maps separately multiplies two midpoints (with unit-spread residuals, as they were first
+/// fitted, the chroma spread at t = 0.5 came out 8× either texture's: σ 0.19–0.23 against
+/// 0.027). Rescaling one side's residual needs its histogram map or its model's channel gain,
+/// which not every texture has in a model-independent form.
 ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t);
 
 /// Evaluation of the curves (uniform knots, linear interpolation, constant beyond the ends).

@@ -258,7 +258,8 @@ void read_provenance(const Field& provenance, Provenance& result)
     if (!provenance.contains("model_choice")) return;
     for (const Field& entry : provenance["model_choice"].elements(-1, "candidates")) {
         entry.expect_keys({"model", "colour", "penalty", "radial_log_psd_db", "polar_log_psd_db", "w1_sigma", "false_colour_rate",
-                           "gradient_orientation_degrees", "gradient_magnitude_w1", "bytes"});
+                           "gradient_orientation_degrees", "gradient_magnitude_w1", "bytes"},
+                          {"joint_colour"});
         // A metric the images were too small for is written as null.
         const auto metric = [&](const char* key) {
             const Field field = entry[key];
@@ -267,6 +268,7 @@ void read_provenance(const Field& provenance, Provenance& result)
         ModelScore& score = result.model_choice.emplace_back();
         score.model = entry["model"].string();
         score.colour = entry["colour"].string();
+        score.joint_colour = entry.contains("joint_colour") && entry["joint_colour"].boolean();
         score.penalty = entry["penalty"].number();
         score.radial_log_psd_db = metric("radial_log_psd_db");
         score.polar_log_psd_db = metric("polar_log_psd_db");
@@ -330,6 +332,7 @@ Json to_json(const TextureDescription& description)
             Json entry = Json::object();
             entry["model"] = score.model;
             entry["colour"] = score.colour;
+            if (score.joint_colour) entry["joint_colour"] = true;  // absent: independent channels
             entry["penalty"] = score.penalty;
             entry["radial_log_psd_db"] = metric(score.radial_log_psd_db);
             entry["polar_log_psd_db"] = metric(score.polar_log_psd_db);
