@@ -43,7 +43,10 @@ pov_render() {  # scene output.png|.exr include-dir [extra povray arguments...]
     { cat "${image%.*}.log" >&2; exit 1; }
 }
 pov_modes="baked"
-if can pov_procedural; then pov_modes="procedural baked"; fi
+# Procedural where the model has a POV-Ray form and the texture uses no joint colour (POV-Ray
+# cannot multiply two patterns: such a texture is baked, docs/pov.md).
+joint_colour() { python3 -c 'import json, sys; sys.exit(0 if "chroma_given_brightness" in json.load(open(sys.argv[1]))["colour"] else 1)' "$out/$name.stex"; }
+if can pov_procedural && ! joint_colour; then pov_modes="procedural baked"; fi
 for mode in $pov_modes; do
   mkdir -p "$out/pov-$mode"
   "$stex" pov "$out/$name.stex" -o "$out/pov-$mode/plane_texture.inc" --name Plane_Texture --mode "$mode"
@@ -67,6 +70,6 @@ echo "  $name-oiio.exr/.png     through the OIIO plugin (oiiotool): level 0 of a
 echo "  $name-oiio-mip3.png    its MIP level 3 (128²), computed by the model with that level's footprint"
 [ -e "$out/$name-pov-procedural.png" ] && echo "  $name-pov-procedural.exr/.png  POV-Ray, procedural include (solid, POV-Ray's own noise), same plane"
 echo "  $name-pov-baked.exr/.png       POV-Ray, baked include (a tileable EXR image map)"
-echo "  $name-pov-showcase.png         POV-Ray showcase: cube, columns, sphere ($(can pov_procedural && echo procedural || echo baked)); baked floor"
+echo "  $name-pov-showcase.png         POV-Ray showcase: cube, columns, sphere (${pov_modes%% *}); baked floor"
 echo "  pov-${pov_modes// /\/, pov-}/, showcase_*.inc   the generated includes (and baked EXRs)"
 echo "  (model: $(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["model"])' "$out/$name.stex"), chosen by stex analyze --model auto; see its score table above)"
