@@ -14,10 +14,18 @@ static_assert(LrpTermCache::read_padding >= lrp_raster::padding, "row_factors re
 
 namespace {
 
+/// The grid columns a lattice column's windows reach, and where its dx, rx² tables start: the same
+/// for every lattice row, so made once per region instead of once per window.
+struct LatticeColumn {
+    int k0 = 0, k1 = 0;
+    std::size_t at = 0;
+};
+
 /// One thread's buffers, reused by every region the thread renders.
 struct Scratch {
     std::vector<float> sum[3], weight, weight_squared;  // per grid row, padded rows
-    std::vector<float> dx, rx2;                         // one window's columns
+    std::vector<float> dx, rx2;                         // every lattice column's box of columns, back to back
+    std::vector<LatticeColumn> columns;                 // per lattice column i
     std::vector<float> sine, cosine;                    // column factors, [term][column]
     std::vector<float> p, q;                            // row factors, [term][channel]
 };
@@ -61,6 +69,33 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
     const double reach[2] = {lrp_window_radius * lattice.spacing[0] * 1.0001, lrp_window_radius * lattice.spacing[1] * 1.0001};
     constexpr float extent = float(lrp_window_radius * lrp_window_radius);
 
+    // Each lattice column's box of grid columns and their dx, rx² (shared by the lattice's rows).
+    s.columns.resize(std::max(s.columns.size(), std::size_t(terms.i_end() - terms.i_begin())));
+    std::size_t filled = 0;
+    for (std::int64_t i = terms.i_begin(); i < terms.i_end(); ++i) {
+        const double xi = lattice.origin[0] + double(i) * lattice.spacing[0];
+        LatticeColumn& column = s.columns[std::size_t(i - terms.i_begin())];
+        std::tie(column.k0, column.k1) = within(grid.x, grid.width, xi, reach[0]);
+        column.at = filled;
+        if (column.k0 >= column.k1) continue;
+        const std::size_t n = std::size_t(column.k1 - column.k0), columns = round_up(n, lrp_raster::padding) + lrp_raster::padding;
+        filled += columns;
+        s.dx.resize(std::max(s.dx.size(), filled));
+        s.rx2.resize(std::max(s.rx2.size(), filled));
+        for (std::size_t k = 0; k < columns; ++k) {
+            const double x = k < n ? grid.x[std::size_t(column.k0) + k] : 0;
+            // sum_windows takes the 3×3 points around the nearest one, exactly: a column whose
+            // nearest lattice column is farther gets weight 0 (as does the padding).
+            if (k < n && std::abs(lattice.nearest(0, x) - i) <= 1) {
+                const float dx = float(x - xi);
+                const float rx = dx * lattice.inverse_spacing[0];
+                s.dx[column.at + k] = dx, s.rx2[column.at + k] = rx * rx;
+            } else {
+                s.dx[column.at + k] = 0, s.rx2[column.at + k] = 2 * extent;
+            }
+        }
+    }
+
     // Lattice rows, then columns, in sum_windows' order (j, then i, ascending): every pixel adds
     // its windows in the order eval() does.
     for (std::int64_t j = terms.j_begin(); j < terms.j_end(); ++j) {
@@ -69,30 +104,19 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
         if (r0 >= r1) continue;
         for (std::int64_t i = terms.i_begin(); i < terms.i_end(); ++i) {
             const double xi = lattice.origin[0] + double(i) * lattice.spacing[0];
-            const auto [k0, k1] = within(grid.x, grid.width, xi, reach[0]);
+            const LatticeColumn& column = s.columns[std::size_t(i - terms.i_begin())];
+            const int k0 = column.k0, k1 = column.k1;
             if (k0 >= k1) continue;
             const LrpTermView view = terms.at(i, j);
             // The column tables hold the window's box of columns; each row reads its chord.
             const std::size_t n = std::size_t(k1 - k0), columns = round_up(n, lrp_raster::padding) + lrp_raster::padding;
-            s.dx.resize(std::max(s.dx.size(), columns));
-            s.rx2.resize(std::max(s.rx2.size(), columns));
-            for (std::size_t k = 0; k < columns; ++k) {
-                const double x = k < n ? grid.x[std::size_t(k0) + k] : 0;
-                // sum_windows takes the 3×3 points around the nearest one, exactly: a column whose
-                // nearest lattice column is farther gets weight 0 (as does the padding).
-                if (k < n && std::abs(lattice.nearest(0, x) - i) <= 1) {
-                    const float dx = float(x - xi);
-                    const float rx = dx * lattice.inverse_spacing[0];
-                    s.dx[k] = dx, s.rx2[k] = rx * rx;
-                } else {
-                    s.dx[k] = 0, s.rx2[k] = 2 * extent;
-                }
-            }
+            const float* const dx = s.dx.data() + column.at;
+            const float* const rx2 = s.rx2.data() + column.at;
             const std::size_t table = columns * std::size_t(view.live);
             s.sine.resize(std::max(s.sine.size(), table));
             s.cosine.resize(std::max(s.cosine.size(), table));
             for (int t = 0; t < view.live; ++t)
-                lrp_raster::sincos_of_products(view.fx()[t], s.dx.data(), n, s.sine.data() + std::size_t(t) * columns,
+                lrp_raster::sincos_of_products(view.fx()[t], dx, n, s.sine.data() + std::size_t(t) * columns,
                                                s.cosine.data() + std::size_t(t) * columns);
             s.p.resize(std::max(s.p.size(), 3 * lrp_raster::factor_plane(view.live)));
             s.q.resize(std::max(s.q.size(), 3 * lrp_raster::factor_plane(view.live)));
@@ -115,7 +139,7 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
                 lrp_raster::WindowRow row;
                 row.cosine = s.cosine.data() + c0, row.sine = s.sine.data() + c0, row.stride = columns;
                 row.p = s.p.data(), row.q = s.q.data(), row.terms = view.live;
-                row.rx2 = s.rx2.data() + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
+                row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 const std::size_t at = std::size_t(r) * row_stride + std::size_t(k0 + c0);
                 for (int c = 0; c < 3; ++c) row.sum[c] = s.sum[c].data() + at;
                 row.weight = s.weight.data() + at, row.weight_squared = s.weight_squared.data() + at;
