@@ -12,40 +12,14 @@
 #include "models/lrp/lrp_noise.h"
 #include "models/lrp/lrp_raster_kernels.h"
 #include "models/lrp/lrp_window.h"
+#include "numerics/fast_math-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::lrp_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 /// fast_sincos_turns (numerics/fast_math.h), lane by lane, operation for operation.
-template <class D, class V>
-HWY_INLINE void SinCosTurns(D d, V turns, V& sine, V& cosine)
-{
-    const hn::RebindToUnsigned<D> du;
-    const auto magic = hn::Set(d, 12582912.0f);
-    const auto shifted = hn::Add(hn::Mul(turns, hn::Set(d, 4.0f)), magic);
-    const auto q = hn::Sub(shifted, magic);
-    const auto x = hn::Mul(hn::Sub(turns, hn::Mul(q, hn::Set(d, 0.25f))), hn::Set(d, 6.28318531f));
-    const auto x2 = hn::Mul(x, x);
-    auto ps = hn::Add(hn::Set(d, -1.9841270e-4f), hn::Mul(x2, hn::Set(d, 2.7557319e-6f)));
-    ps = hn::Add(hn::Set(d, 8.3333333e-3f), hn::Mul(x2, ps));
-    ps = hn::Add(hn::Set(d, -1.6666667e-1f), hn::Mul(x2, ps));
-    const auto s = hn::Mul(x, hn::Add(hn::Set(d, 1.0f), hn::Mul(x2, ps)));
-    auto pc = hn::Add(hn::Set(d, -1.3888889e-3f), hn::Mul(x2, hn::Set(d, 2.4801587e-5f)));
-    pc = hn::Add(hn::Set(d, 4.1666667e-2f), hn::Mul(x2, pc));
-    pc = hn::Add(hn::Set(d, -0.5f), hn::Mul(x2, pc));
-    const auto c = hn::Add(hn::Set(d, 1.0f), hn::Mul(x2, pc));
-    const auto quadrant = hn::BitCast(du, shifted);
-    const auto one = hn::Set(du, 1u), two = hn::Set(du, 2u);
-    const auto swap = hn::Sub(hn::Zero(du), hn::And(quadrant, one));
-    const auto s_bits = hn::BitCast(du, s), c_bits = hn::BitCast(du, c);
-    const auto sine_bits = hn::Xor(hn::Or(hn::AndNot(swap, s_bits), hn::And(c_bits, swap)),
-                                   hn::ShiftLeft<30>(hn::And(quadrant, two)));
-    const auto cosine_bits = hn::Xor(hn::Or(hn::AndNot(swap, c_bits), hn::And(s_bits, swap)),
-                                     hn::ShiftLeft<30>(hn::And(hn::Add(quadrant, one), two)));
-    sine = hn::BitCast(d, sine_bits);
-    cosine = hn::BitCast(d, cosine_bits);
-}
+using fast_math::HWY_NAMESPACE::FastSinCosTurns;
 
 /// Runs `body(d)` with the narrowest float vector of at most 4, 8 or the target's lanes that
 /// covers `count` in one go where it can: a window a few pixels wide costs a few lanes, not 16.
@@ -66,7 +40,7 @@ void SinCosOfProducts(float a, const float* b, std::size_t count, float* sine, f
         const auto va = hn::Set(d, a);
         for (std::size_t k = 0; k < count; k += lanes) {
             hn::Vec<decltype(d)> s, c;
-            SinCosTurns(d, hn::Mul(va, hn::LoadU(d, b + k)), s, c);
+            FastSinCosTurns(d, hn::Mul(va, hn::LoadU(d, b + k)), s, c);
             hn::StoreU(s, d, sine + k);
             hn::StoreU(c, d, cosine + k);
         }
@@ -82,7 +56,7 @@ void RowFactors(float dy, const float* fy, const float* const re[3], const float
         const std::size_t plane = factor_plane(terms);
         for (std::size_t t = 0; t < std::size_t(terms); t += lanes) {
             hn::Vec<decltype(d)> sb, cb;
-            SinCosTurns(d, hn::Mul(hn::LoadU(d, fy + t), vdy), sb, cb);
+            FastSinCosTurns(d, hn::Mul(hn::LoadU(d, fy + t), vdy), sb, cb);
             for (int c = 0; c < 3; ++c) {
                 const auto vre = hn::LoadU(d, re[c] + t), vim = hn::LoadU(d, im[c] + t);
                 hn::StoreU(hn::Sub(hn::Mul(vre, cb), hn::Mul(vim, sb)), d, p + std::size_t(c) * plane + t);
@@ -156,7 +130,7 @@ void SumTermsAt(const LrpTermView& terms, const float* dx, const float* dy, std:
                 const std::size_t term = std::size_t(t + l);
                 const auto turns = hn::Add(hn::Mul(hn::Set(d, fx[term]), vdx), hn::Mul(hn::Set(d, fy[term]), vdy));
                 hn::Vec<decltype(d)> sine, cosine;
-                SinCosTurns(d, turns, sine, cosine);
+                FastSinCosTurns(d, turns, sine, cosine);
                 for (int c = 0; c < 3; ++c)
                     partial[l][c] = hn::Add(partial[l][c], hn::Sub(hn::Mul(hn::Set(d, re[c][term]), cosine),
                                                                    hn::Mul(hn::Set(d, im[c][term]), sine)));
