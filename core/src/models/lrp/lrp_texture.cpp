@@ -110,17 +110,18 @@ Rgb LrpTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 
 namespace {
 
-/// The lattice points whose windows reach a raster region, with their terms drawn once for the
-/// region, when the region is dense enough for that to pay (a coarse MIP level spans many lattice
-/// cells per pixel: those draw per pixel, as eval() does).
 /// One thread's term cache, reused stratum after stratum and region after region: a fresh one per
 /// stratum grew its buffers term by term (reallocations and copies were ~6 % of eval_region).
+/// One RegionTerms at a time per thread holds it (stratum_values, one stratum after another).
 LrpTermCache& thread_term_cache()
 {
     thread_local LrpTermCache cache;
     return cache;
 }
 
+/// The lattice points whose windows reach a raster region, with their terms drawn once for the
+/// region, when the region is dense enough for that to pay (a coarse MIP level spans many lattice
+/// cells per pixel: those draw per pixel, as eval() does).
 struct RegionTerms {
     bool cached = false;
     LrpTermCache& terms = thread_term_cache();
