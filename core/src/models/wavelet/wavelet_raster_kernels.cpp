@@ -179,71 +179,53 @@ HWY_INLINE void SplinesOf(DD dd, DF df, DI di, hn::Vec<DD> x, double size, doubl
     w[1] = hn::Sub(hn::Sub(one, w[0]), w[2]);
 }
 
+/// SolidNoiseAtPoints for the Lanes(dd) points from k: eval()'s splines, gathers and sums.
+template <class DD>
+HWY_INLINE void SolidNoiseOfLanes(DD dd, const SolidBandPoints& p, std::size_t k, const float* coefficients, int size,
+                                  float* out)
+{
+    const hn::Rebind<float, DD> df;
+    const hn::Rebind<std::int32_t, DD> di;
+    const double inverse_size = 1.0 / size;
+    const auto scale = hn::Set(dd, p.scale);
+    const auto mask = hn::Set(di, size - 1), vsize = hn::Set(di, size), plane = hn::Set(di, size * size);
+    hn::Vec<decltype(di)> fx, fy, fz;
+    hn::Vec<decltype(df)> wx[3], wy[3], wz[3];
+    SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.x + k), scale), hn::Set(dd, p.offset[0])), size, inverse_size, fx, wx);
+    SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.y + k), scale), hn::Set(dd, p.offset[1])), size, inverse_size, fy, wy);
+    SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.z + k), scale), hn::Set(dd, p.offset[2])), size, inverse_size, fz, wz);
+    // Row starts of the nine (z, y) coefficient rows, slab-major as eval() walks them.
+    hn::Vec<decltype(di)> row[9];
+    for (int kz = 0; kz < 3; ++kz) {
+        const auto slab = hn::Mul(hn::And(hn::Add(fz, hn::Set(di, kz)), mask), plane);
+        for (int jy = 0; jy < 3; ++jy)
+            row[3 * kz + jy] = hn::Add(slab, hn::Mul(hn::And(hn::Add(fy, hn::Set(di, jy)), mask), vsize));
+    }
+    hn::Vec<decltype(df)> column[3];
+    for (int i = 0; i < 3; ++i) {
+        const auto cx = hn::And(hn::Add(fx, hn::Set(di, i)), mask);
+        hn::Vec<decltype(df)> planes[3];
+        for (int kz = 0; kz < 3; ++kz) {
+            const auto* r = row + 3 * kz;
+            const auto c0 = hn::GatherIndex(df, coefficients, hn::Add(r[0], cx));
+            const auto c1 = hn::GatherIndex(df, coefficients, hn::Add(r[1], cx));
+            const auto c2 = hn::GatherIndex(df, coefficients, hn::Add(r[2], cx));
+            planes[kz] = hn::Add(hn::Add(hn::Mul(wy[0], c0), hn::Mul(wy[1], c1)), hn::Mul(wy[2], c2));
+        }
+        column[i] = hn::Add(hn::Add(hn::Mul(wz[0], planes[0]), hn::Mul(wz[1], planes[1])), hn::Mul(wz[2], planes[2]));
+    }
+    hn::StoreU(hn::Add(hn::Add(hn::Mul(wx[0], column[0]), hn::Mul(wx[1], column[1])), hn::Mul(wx[2], column[2])), df,
+               out + k);
+}
+
 void SolidNoiseAtPoints(const SolidBandPoints& p, std::size_t count, const float* coefficients, int size, float* out)
 {
     const hn::ScalableTag<double> dd;
-    const hn::Rebind<float, decltype(dd)> df;
-    const hn::Rebind<std::int32_t, decltype(dd)> di;
     const std::size_t lanes = hn::Lanes(dd);
-    const double inverse_size = 1.0 / size;
-    const auto scale = hn::Set(dd, p.scale);
-    const auto ox = hn::Set(dd, p.offset[0]), oy = hn::Set(dd, p.offset[1]), oz = hn::Set(dd, p.offset[2]);
-    const auto mask = hn::Set(di, size - 1), vsize = hn::Set(di, size), plane = hn::Set(di, size * size);
     std::size_t k = 0;
-    for (; k + lanes <= count; k += lanes) {
-        hn::Vec<decltype(di)> fx, fy, fz;
-        hn::Vec<decltype(df)> wx[3], wy[3], wz[3];
-        SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.x + k), scale), ox), size, inverse_size, fx, wx);
-        SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.y + k), scale), oy), size, inverse_size, fy, wy);
-        SplinesOf(dd, df, di, hn::Add(hn::Mul(hn::LoadU(dd, p.z + k), scale), oz), size, inverse_size, fz, wz);
-        // Row starts of the nine (z, y) coefficient rows, slab-major as eval() walks them.
-        hn::Vec<decltype(di)> row[9];
-        for (int kz = 0; kz < 3; ++kz) {
-            const auto slab = hn::Mul(hn::And(hn::Add(fz, hn::Set(di, kz)), mask), plane);
-            for (int jy = 0; jy < 3; ++jy)
-                row[3 * kz + jy] = hn::Add(slab, hn::Mul(hn::And(hn::Add(fy, hn::Set(di, jy)), mask), vsize));
-        }
-        hn::Vec<decltype(df)> column[3];
-        for (int i = 0; i < 3; ++i) {
-            const auto cx = hn::And(hn::Add(fx, hn::Set(di, i)), mask);
-            hn::Vec<decltype(df)> planes[3];
-            for (int kz = 0; kz < 3; ++kz) {
-                const auto* r = row + 3 * kz;
-                const auto c0 = hn::GatherIndex(df, coefficients, hn::Add(r[0], cx));
-                const auto c1 = hn::GatherIndex(df, coefficients, hn::Add(r[1], cx));
-                const auto c2 = hn::GatherIndex(df, coefficients, hn::Add(r[2], cx));
-                planes[kz] = hn::Add(hn::Add(hn::Mul(wy[0], c0), hn::Mul(wy[1], c1)), hn::Mul(wy[2], c2));
-            }
-            column[i] = hn::Add(hn::Add(hn::Mul(wz[0], planes[0]), hn::Mul(wz[1], planes[1])), hn::Mul(wz[2], planes[2]));
-        }
-        hn::StoreU(hn::Add(hn::Add(hn::Mul(wx[0], column[0]), hn::Mul(wx[1], column[1])), hn::Mul(wx[2], column[2])), df,
-                   out + k);
-    }
-    // The rest, one lane at a time: the same operations on a one-lane vector.
-    const hn::CappedTag<double, 1> d1;
-    const hn::Rebind<float, decltype(d1)> f1;
-    const hn::Rebind<std::int32_t, decltype(d1)> i1;
-    for (; k < count; ++k) {
-        hn::Vec<decltype(i1)> fx, fy, fz;
-        hn::Vec<decltype(f1)> wx[3], wy[3], wz[3];
-        SplinesOf(d1, f1, i1, hn::Set(d1, p.x[k] * p.scale + p.offset[0]), size, inverse_size, fx, wx);
-        SplinesOf(d1, f1, i1, hn::Set(d1, p.y[k] * p.scale + p.offset[1]), size, inverse_size, fy, wy);
-        SplinesOf(d1, f1, i1, hn::Set(d1, p.z[k] * p.scale + p.offset[2]), size, inverse_size, fz, wz);
-        const int x0 = hn::GetLane(fx), y0 = hn::GetLane(fy), z0 = hn::GetLane(fz), m = size - 1;
-        float column[3];
-        for (int i = 0; i < 3; ++i) {
-            const std::size_t cx = std::size_t((x0 + i) & m);
-            float planes[3];
-            for (int kz = 0; kz < 3; ++kz) {
-                const float* r[3];
-                for (int jy = 0; jy < 3; ++jy)
-                    r[jy] = coefficients + (std::size_t((z0 + kz) & m) * size + std::size_t((y0 + jy) & m)) * size;
-                planes[kz] = hn::GetLane(wy[0]) * r[0][cx] + hn::GetLane(wy[1]) * r[1][cx] + hn::GetLane(wy[2]) * r[2][cx];
-            }
-            column[i] = hn::GetLane(wz[0]) * planes[0] + hn::GetLane(wz[1]) * planes[1] + hn::GetLane(wz[2]) * planes[2];
-        }
-        out[k] = hn::GetLane(wx[0]) * column[0] + hn::GetLane(wx[1]) * column[1] + hn::GetLane(wx[2]) * column[2];
-    }
+    for (; k + lanes <= count; k += lanes) SolidNoiseOfLanes(dd, p, k, coefficients, size, out);
+    // The rest one point at a time: the same operations on one-lane vectors.
+    for (; k < count; ++k) SolidNoiseOfLanes(hn::CappedTag<double, 1>(), p, k, coefficients, size, out);
 }
 
 }  // namespace stochtex::wavelet_raster::HWY_NAMESPACE
