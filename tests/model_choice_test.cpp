@@ -138,6 +138,20 @@ TEST(ModelChoice, APhotoWaveletServesKeepsTheSmallWaveletTexture)
     EXPECT_EQ(chosen.model, "wavelet") << format_model_choice(chosen);
 }
 
+/// The candidates `auto` lists when the colour mode (and with `joint`, joint colour) is left
+/// open, in registry order, as "model/mode" ("+joint" for a joint-colour row).
+std::vector<std::string> expected_candidates(bool joint)
+{
+    std::vector<std::string> expected;
+    for (const ModelInfo* model : registered_model_infos())
+        if (model->capabilities.analysis)
+            for (const std::string& mode : model->automatic_colour_modes) {
+                expected.push_back(model->name + "/" + mode);
+                if (joint && mode == "pca" && model->capabilities.joint_colour) expected.push_back(model->name + "/pca+joint");
+            }
+    return expected;
+}
+
 TEST(ModelChoice, LeftOpenTheColourModeIsChosenToo)
 {
     AnalysisOptions options;
@@ -145,10 +159,7 @@ TEST(ModelChoice, LeftOpenTheColourModeIsChosenToo)
     options.try_colour_modes = true;
     const TextureDescription chosen = analyze(striped_photo(64), options);
     // Each model in each colour mode it declares (tiling: pca and rgb), in registry order.
-    std::vector<std::string> expected;
-    for (const ModelInfo* model : registered_model_infos())
-        if (model->capabilities.analysis)
-            for (const std::string& mode : model->automatic_colour_modes) expected.push_back(model->name + "/" + mode);
+    const std::vector<std::string> expected = expected_candidates(false);
     std::vector<std::string> got;
     for (const ModelScore& s : chosen.provenance.model_choice) got.push_back(s.model + "/" + s.colour);
     EXPECT_EQ(got, expected);
@@ -165,13 +176,7 @@ TEST(ModelChoice, LeftOpenJointColourIsTriedBothWays)
     options.try_colour_modes = true;
     options.try_joint_colour = true;
     const TextureDescription chosen = analyze(two_hue_photo(64), options);
-    std::vector<std::string> expected;
-    for (const ModelInfo* model : registered_model_infos())
-        if (model->capabilities.analysis)
-            for (const std::string& mode : model->automatic_colour_modes) {
-                expected.push_back(model->name + "/" + mode);
-                if (mode == "pca" && model->capabilities.joint_colour) expected.push_back(model->name + "/pca+joint");
-            }
+    const std::vector<std::string> expected = expected_candidates(true);
     std::vector<std::string> got;
     bool chosen_row_found = false;
     for (const ModelScore& s : chosen.provenance.model_choice) {
