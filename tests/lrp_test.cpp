@@ -355,6 +355,29 @@ TEST(LrpByExample, SteepSpectrumKeepsItsUpperOctaves)
     }
 }
 
+TEST(LrpByExample, TheLargestStratumCountFitsTheFormat)
+{
+    // --L accepts 1–16 and the file holds 16 strata, but the lowest octave takes a stratum of its
+    // own: L = 16 used to make 17 and the analysis failed on its own output. With the lowest
+    // octave's, at most 15 strata of equal energy are made, so 16 gives what 15 gives.
+    const Image photo = exemplar_crop("gravel.png", 256);
+    if (photo.empty()) GTEST_SKIP() << "../shared/exemplars not available";
+    auto strata = [&](const char* L) {
+        AnalysisOptions options;
+        options.model = "lrp";
+        options.model_options = {{"L", L}};
+        return analyze(photo, options).parameters.get<LrpParameters>().strata;
+    };
+    const std::vector<LrpStratum> fifteen = strata("15"), sixteen = strata("16");
+    ASSERT_LE(sixteen.size(), std::size_t(max_lrp_strata));
+    EXPECT_GT(sixteen.size(), strata("8").size());
+    ASSERT_EQ(sixteen.size(), fifteen.size());
+    for (std::size_t s = 0; s < sixteen.size(); ++s) {
+        EXPECT_EQ(sixteen[s].spacing, fifteen[s].spacing) << "stratum " << s;
+        EXPECT_EQ(sixteen[s].sigma, fifteen[s].sigma) << "stratum " << s;
+    }
+}
+
 TEST(LrpStructure, ResemblanceGrowsWithRWithoutSeams)
 {
     // Structure (paper §5): fixed phases for a share r of the energy, with random placement (no

@@ -33,7 +33,7 @@ public:
             {integer_option("J", 1, 256,
                             {"50", "cosines", "cosine budget per window over all strata and the structure (cost: about "
                                               "9(J + L) sine/cosine and window evaluations per sample)"}),
-             integer_option("L", 1, 16, {"8", "strata", "random-phase strata of equal energy (the paper's 4 measured worse than 8)"}),
+             integer_option("L", 1, 16, {"8", "strata", "random-phase strata of equal energy, at most 15 besides the lowest octave's (the paper's 4 measured worse than 8)"}),
              number_option("r", 0, 1,
                            {"0.1", "", "share of the spectrum's energy reproduced with the photo's own phases (structure); "
                                        "0: noise by example only"},

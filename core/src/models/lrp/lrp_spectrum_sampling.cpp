@@ -317,16 +317,19 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
         for (const Bin& bin : bins)
             if (std::hypot(bin.kx, bin.ky) < lowest_octave_bins) low.push_back(&bin);
     const int low_terms = std::min<int>(int(low.size()), options.cosines / 2);
+    // The file holds max_lrp_strata strata in all: with the lowest octave's, at most one fewer
+    // of equal energy (L = 16 gives 15 and the lowest octave's).
+    const int equal_strata = std::min(options.strata, max_lrp_strata - (low_terms > 0 ? 1 : 0));
 
     // Equal-energy strata over the sorted densities (§4.2): a bin goes where the middle of its
     // energy falls, so a peak holding more than 1/L of the energy empties the next stratum.
-    std::vector<std::vector<const Bin*>> members(std::size_t(options.strata));
+    std::vector<std::vector<const Bin*>> members(static_cast<std::size_t>(equal_strata));
     double cumulative = 0;
     for (const Bin& bin : bins) {
         // The lowest octave's bins keep their place in the split (the L strata keep their
         // boundaries) but go to their own stratum.
         const double energy = bin.power * bin.multiplicity;
-        const int s = std::min(options.strata - 1, int(options.strata * (cumulative + 0.5 * energy) / kept_energy));
+        const int s = std::min(equal_strata - 1, int(equal_strata * (cumulative + 0.5 * energy) / kept_energy));
         if (!(low_terms > 0 && std::hypot(bin.kx, bin.ky) < lowest_octave_bins)) members[std::size_t(s)].push_back(&bin);
         cumulative += energy;
     }

@@ -40,7 +40,7 @@
 namespace stochtex {
 
 struct LrpSamplingOptions {
-    int strata = 8;           ///< L
+    int strata = 8;           ///< L (with the lowest octave's stratum, at most max_lrp_strata − 1 are made)
     int cosines = 48;         ///< J for the random-phase strata (Σ J_S)
     int representatives = 4;  ///< stored bins per sub-stratum
     double coverage = 0.25;   ///< the paper's; analysis by example uses ⅛ (LrpFitOptions)
