@@ -549,6 +549,40 @@ TEST(CompareImages, PerceptualMetricsAreZeroForItselfAndSeeOrientation) {
     for (int c = 0; c < 3; ++c) EXPECT_LT(versus_isotropic.log_psd_db[c], versus_again.log_psd_db[c] + 0.5);
 }
 
+TEST(CompareImages, OnePreparedReferenceServesManyTestsAsTheMetricsDefineThem) {
+    // The model choice prepares the photo's side once and compares every candidate with it:
+    // each report must be what the metrics give for that pair, whatever was compared before.
+    const Image photo = random_rgb(96, 80, 1);
+    const auto luma = [](const Image& rgb) {  // the luma compare_images measures gradients on
+        std::vector<float> plane(rgb.pixel_count());
+        for (std::size_t i = 0; i < plane.size(); ++i)
+            plane[i] = 0.2126f * rgb.pixels[i * 3] + 0.7152f * rgb.pixels[i * 3 + 1] + 0.0722f * rgb.pixels[i * 3 + 2];
+        return plane;
+    };
+    const ComparisonReference prepared(photo);
+    EXPECT_EQ(prepared.width(), 96);
+    EXPECT_EQ(prepared.height(), 80);
+    for (unsigned seed : {2u, 3u, 4u}) {
+        const Image test = random_rgb(64 + 8 * int(seed), 72, seed);
+        const ComparisonReport report = compare_images(prepared, test);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(report.w1[c], wasserstein1(photo.channel(c), test.channel(c))) << "seed " << seed;
+            EXPECT_EQ(report.stddev_reference[c], std::sqrt(colour_covariance(photo)[c][c]));
+        }
+        EXPECT_EQ(report.mean_reference, channel_means(photo));
+        EXPECT_EQ(report.covariance_error, covariance_relative_error(photo, test));
+        EXPECT_EQ(report.false_colour_rate, false_colour_rate(photo, test));
+        const GradientStatistics a = gradient_statistics(luma(photo), photo.width, photo.height);
+        const GradientStatistics b = gradient_statistics(luma(test), test.width, test.height);
+        EXPECT_EQ(report.gradient_orientation_degrees, circular_wasserstein1_degrees(a.orientation, b.orientation));
+        const ComparisonReport fresh = compare_images(photo, test);
+        EXPECT_EQ(report.polar_log_psd_db, fresh.polar_log_psd_db);
+        EXPECT_EQ(report.gradient_magnitude_w1, fresh.gradient_magnitude_w1);
+        EXPECT_EQ(report.psd_reference_luma.power, fresh.psd_reference_luma.power);
+    }
+    EXPECT_THROW(ComparisonReference(Image(4, 4, 1)), Error);
+}
+
 TEST(CompareImages, PerceptualMetricsAreNotAvailableOnTinyImages) {
     const ComparisonReport tiny = compare_images(random_rgb(8, 8, 1), random_rgb(8, 8, 2));
     EXPECT_TRUE(std::isnan(tiny.polar_log_psd_db));

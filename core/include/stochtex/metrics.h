@@ -5,6 +5,7 @@
 #include <stochtex/image.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,24 @@ struct ComparisonReport {
     CentredSpectrum spectrum_reference_luma, spectrum_test_luma;
 };
 ComparisonReport compare_images(const Image& reference, const Image& test);
+
+/// The reference's side of compare_images made once, to compare many tests with one photo (the
+/// model choice scores every candidate against the same photo): its sorted samples, spectra,
+/// gradients and chroma region. compare_images(ComparisonReference(a), b) is compare_images(a, b),
+/// bit for bit. Cheap to copy; immutable, so it may be shared between threads.
+class ComparisonReference {
+public:
+    /// Throws Error unless `reference` is a non-empty RGB image.
+    explicit ComparisonReference(const Image& reference);
+    int width() const;
+    int height() const;
+
+private:
+    struct Prepared;
+    friend ComparisonReport compare_images(const ComparisonReference& reference, const Image& test);
+    std::shared_ptr<const Prepared> prepared_;
+};
+ComparisonReport compare_images(const ComparisonReference& reference, const Image& test);
 
 /// What a synthesis is held to against its photo (docs/metrics.md, "Fidelity"): at or under
 /// each target a person comparing the two side by side sees no difference of that kind.

@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace stochtex {
@@ -141,10 +143,14 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
 
     // Step 4: the model's own parameters (and its provenance options).
     report(0.5, "spectrum");
+    // The photo's side of the comparison is made at the first score and kept for the others.
+    std::once_flag photo_side_made;
+    std::optional<ComparisonReference> photo_side;
     const auto score = [&](const ModelParameters& parameters, int max_side) {
+        std::call_once(photo_side_made, [&] { photo_side.emplace(photo); });
         TextureDescription candidate = description;
         candidate.parameters = parameters;
-        return score_against_photo(candidate, photo, max_side);
+        return score_against_photo(candidate, *photo_side, max_side);
     };
     const FitInput input{channels, photo.width, photo.height, colour, description.histograms, band_count, options,
                          std::move(model_options), score};

@@ -75,6 +75,13 @@ void require_rgb(const Image& image, const char* role) {
                     std::to_string(image.channels) + " channels");
 }
 
+/// A sample as doubles, sorted ascending (what W1 compares).
+std::vector<double> sorted_doubles(const std::vector<float>& sample) {
+    std::vector<double> sorted(sample.begin(), sample.end());
+    std::sort(sorted.begin(), sorted.end());
+    return sorted;
+}
+
 }  // namespace
 
 namespace {
@@ -375,10 +382,7 @@ double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b, int min_sampl
 
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b) {
     if (a.empty() || b.empty()) throw Error("wasserstein1: a sample is empty");
-    std::vector<double> sorted_a(a.begin(), a.end()), sorted_b(b.begin(), b.end());
-    std::sort(sorted_a.begin(), sorted_a.end());
-    std::sort(sorted_b.begin(), sorted_b.end());
-    return wasserstein1_of_sorted(sorted_a, sorted_b);
+    return wasserstein1_of_sorted(sorted_doubles(a), sorted_doubles(b));
 }
 
 double wasserstein1_of_sorted(const std::vector<double>& sorted_a, const std::vector<double>& sorted_b) {
@@ -468,44 +472,60 @@ std::array<double, 2> cielab_chroma(float r, float g, float b) {
     return {500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
 }
 
-double false_colour_rate(const Image& reference, const Image& test) {
-    require_rgb(reference, "false_colour_rate: reference");
-    require_rgb(test, "false_colour_rate: test");
-    // ΔE*ab ≈ 2.3 is one just-noticeable difference (Sharma 2003): a bin is one JND wide, so the
-    // one-bin dilation forgives a chroma within about a JND of one the photo has.
-    constexpr double kBin = 2.3, kLow = -128.0;
-    constexpr int kBins = 112;  // ⌈256 / 2.3⌉: a*, b* ∈ [−128, 128) (outliers clamp to the edge)
-    constexpr double kHeld = 0.995;
-    const auto bin_of = [&](const float* p) {
-        const std::array<double, 2> chroma = cielab_chroma(p[0], p[1], p[2]);
-        const int i = std::clamp(int(std::floor((chroma[0] - kLow) / kBin)), 0, kBins - 1);
-        const int j = std::clamp(int(std::floor((chroma[1] - kLow) / kBin)), 0, kBins - 1);
-        return j * kBins + i;
-    };
-    std::vector<double> counts(kBins * kBins, 0.0);
-    for (std::size_t p = 0; p < reference.pixel_count(); ++p) counts[bin_of(&reference.pixels[p * 3])] += 1;
+namespace {
+
+// ΔE*ab ≈ 2.3 is one just-noticeable difference (Sharma 2003): a bin is one JND wide, so the
+// one-bin dilation forgives a chroma within about a JND of one the photo has.
+constexpr double kChromaBin = 2.3, kChromaLow = -128.0;
+constexpr int kChromaBins = 112;  // ⌈256 / 2.3⌉: a*, b* ∈ [−128, 128) (outliers clamp to the edge)
+constexpr double kChromaHeld = 0.995;
+
+int chroma_bin_of(const float* p) {
+    const std::array<double, 2> chroma = cielab_chroma(p[0], p[1], p[2]);
+    const int i = std::clamp(int(std::floor((chroma[0] - kChromaLow) / kChromaBin)), 0, kChromaBins - 1);
+    const int j = std::clamp(int(std::floor((chroma[1] - kChromaLow) / kChromaBin)), 0, kChromaBins - 1);
+    return j * kChromaBins + i;
+}
+
+/// The a*b* bins a test pixel may fall in without counting as false colour: the densest bins
+/// holding kChromaHeld of the reference's pixels, dilated by one bin.
+std::vector<char> held_chroma_region(const Image& reference) {
+    std::vector<double> counts(kChromaBins * kChromaBins, 0.0);
+    for (std::size_t p = 0; p < reference.pixel_count(); ++p) counts[chroma_bin_of(&reference.pixels[p * 3])] += 1;
     std::vector<int> order(counts.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
     std::sort(order.begin(), order.end(), [&](int u, int v) { return counts[u] > counts[v]; });
     std::vector<char> held(counts.size(), 0), region(counts.size(), 0);
     double cumulative = 0;
     for (int bin : order) {
-        if (cumulative >= kHeld * double(reference.pixel_count())) break;
+        if (cumulative >= kChromaHeld * double(reference.pixel_count())) break;
         held[bin] = 1;
         cumulative += counts[bin];
     }
-    for (int j = 0; j < kBins; ++j)
-        for (int i = 0; i < kBins; ++i) {
-            if (!held[j * kBins + i]) continue;
+    for (int j = 0; j < kChromaBins; ++j)
+        for (int i = 0; i < kChromaBins; ++i) {
+            if (!held[j * kChromaBins + i]) continue;
             for (int dj = -1; dj <= 1; ++dj)
                 for (int di = -1; di <= 1; ++di) {
                     const int u = i + di, v = j + dj;
-                    if (u >= 0 && v >= 0 && u < kBins && v < kBins) region[v * kBins + u] = 1;
+                    if (u >= 0 && v >= 0 && u < kChromaBins && v < kChromaBins) region[v * kChromaBins + u] = 1;
                 }
         }
+    return region;
+}
+
+double outside_region_rate(const std::vector<char>& region, const Image& test) {
     std::size_t outside = 0;
-    for (std::size_t p = 0; p < test.pixel_count(); ++p) outside += !region[bin_of(&test.pixels[p * 3])];
+    for (std::size_t p = 0; p < test.pixel_count(); ++p) outside += !region[chroma_bin_of(&test.pixels[p * 3])];
     return double(outside) / double(test.pixel_count());
+}
+
+}  // namespace
+
+double false_colour_rate(const Image& reference, const Image& test) {
+    require_rgb(reference, "false_colour_rate: reference");
+    require_rgb(test, "false_colour_rate: test");
+    return outside_region_rate(held_chroma_region(reference), test);
 }
 
 std::array<double, 3> channel_means(const Image& rgb) {
@@ -536,23 +556,89 @@ double covariance_relative_error(const Image& reference, const Image& test) {
     return relative_frobenius_error(colour_covariance(reference), colour_covariance(test));
 }
 
-ComparisonReport compare_images(const Image& reference, const Image& test) {
+/// The reference's side of compare_images: every statistic of the photo the report compares.
+struct ComparisonReference::Prepared {
+    int width = 0, height = 0;
+    std::array<double, 3> mean{};
+    Matrix3 covariance{};
+    std::array<std::vector<double>, 3> sorted_channel;  ///< for W1
+    std::array<RadialPsd, 3> channel_psd;
+    std::array<std::string, 3> channel_psd_error;        ///< radial_psd's message where it failed
+    WindowedSpectrum luma_spectrum;
+    RadialPsd luma_psd;
+    PolarPsd luma_polar_psd;
+    bool has_gradients = false;                          ///< at least 3×3
+    std::string gradient_error;                          ///< gradient_statistics' message where it failed
+    std::vector<double> orientation, sorted_magnitude;
+    double mean_magnitude = 0;
+    std::vector<char> held_chroma;
+};
+
+namespace {
+constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
+}  // namespace
+
+ComparisonReference::ComparisonReference(const Image& reference) {
     require_rgb(reference, "compare_images: reference");
+    auto prepared = std::make_shared<Prepared>();
+    Prepared& p = *prepared;
+    p.width = reference.width, p.height = reference.height;
+    p.mean = channel_means(reference);
+    p.covariance = colour_covariance(reference);
+    for (int c = 0; c < 3; ++c) {
+        const std::vector<float> plane = reference.channel(c);
+        p.sorted_channel[c] = sorted_doubles(plane);
+        // A failure is reported when a test is compared, as compare_images always has.
+        try {
+            p.channel_psd[c] = radial_psd(plane, reference.width, reference.height);
+        } catch (const Error& e) {
+            p.channel_psd_error[c] = e.what();
+        }
+    }
+    const std::vector<float> luma = luma_plane(reference);
+    p.luma_spectrum = windowed_spectrum(luma, reference.width, reference.height, "compare_images: reference");
+    p.luma_psd = radial_psd_of(p.luma_spectrum, kBinsPerOctave);
+    p.luma_polar_psd = polar_psd_of(p.luma_spectrum, kBinsPerOctave, kAngleBins);
+    p.has_gradients = std::min(reference.width, reference.height) >= 3;
+    if (p.has_gradients) {
+        try {
+            GradientStatistics gradients = gradient_statistics(luma, reference.width, reference.height);
+            for (float m : gradients.magnitude_over_sigma) p.mean_magnitude += m;
+            p.mean_magnitude /= double(gradients.magnitude_over_sigma.size());
+            p.sorted_magnitude = sorted_doubles(gradients.magnitude_over_sigma);
+            p.orientation = std::move(gradients.orientation);
+        } catch (const Error& e) {
+            p.gradient_error = e.what();
+        }
+    }
+    p.held_chroma = held_chroma_region(reference);
+    prepared_ = std::move(prepared);
+}
+
+int ComparisonReference::width() const { return prepared_->width; }
+int ComparisonReference::height() const { return prepared_->height; }
+
+ComparisonReport compare_images(const Image& reference, const Image& test) {
+    return compare_images(ComparisonReference(reference), test);
+}
+
+ComparisonReport compare_images(const ComparisonReference& prepared_reference, const Image& test) {
+    const ComparisonReference::Prepared& reference = *prepared_reference.prepared_;
     require_rgb(test, "compare_images: test");
     ComparisonReport report;
-    report.mean_reference = channel_means(reference);
+    report.mean_reference = reference.mean;
     report.mean_test = channel_means(test);
-    const auto reference_covariance = colour_covariance(reference);
     const auto test_covariance = colour_covariance(test);
-    report.covariance_error = relative_frobenius_error(reference_covariance, test_covariance);
+    report.covariance_error = relative_frobenius_error(reference.covariance, test_covariance);
     for (int c = 0; c < 3; ++c) {
-        report.stddev_reference[c] = std::sqrt(reference_covariance[c][c]);
+        report.stddev_reference[c] = std::sqrt(reference.covariance[c][c]);
         report.stddev_test[c] = std::sqrt(test_covariance[c][c]);
-        const std::vector<float> reference_plane = reference.channel(c), test_plane = test.channel(c);
-        report.w1[c] = wasserstein1(reference_plane, test_plane);
+        const std::vector<float> test_plane = test.channel(c);
+        report.w1[c] = wasserstein1_of_sorted(reference.sorted_channel[c], sorted_doubles(test_plane));
         report.w1_relative[c] = report.w1[c] / report.stddev_reference[c];
         try {
-            report.log_psd_db[c] = log_psd_distance_or_nan(radial_psd(reference_plane, reference.width, reference.height),
+            if (!reference.channel_psd_error[c].empty()) throw Error(reference.channel_psd_error[c]);
+            report.log_psd_db[c] = log_psd_distance_or_nan(reference.channel_psd[c],
                                                            radial_psd(test_plane, test.width, test.height),
                                                            resolved_bin_samples);
         } catch (const Error& e) {
@@ -560,36 +646,29 @@ ComparisonReport compare_images(const Image& reference, const Image& test) {
         }
     }
     // One windowed spectrum of each luma serves the radial, the polar and the plotted spectrum.
-    const std::vector<float> reference_luma = luma_plane(reference), test_luma = luma_plane(test);
-    const WindowedSpectrum reference_spectrum =
-        windowed_spectrum(reference_luma, reference.width, reference.height, "compare_images: reference");
+    const std::vector<float> test_luma = luma_plane(test);
     const WindowedSpectrum test_spectrum = windowed_spectrum(test_luma, test.width, test.height, "compare_images: test");
-    constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
-    report.psd_reference_luma = radial_psd_of(reference_spectrum, kBinsPerOctave);
+    report.psd_reference_luma = reference.luma_psd;
     report.psd_test_luma = radial_psd_of(test_spectrum, kBinsPerOctave);
-    const PolarDistances polar = polar_distances_or_nan(polar_psd_of(reference_spectrum, kBinsPerOctave, kAngleBins),
-                                                        polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
+    const PolarDistances polar =
+        polar_distances_or_nan(reference.luma_polar_psd, polar_psd_of(test_spectrum, kBinsPerOctave, kAngleBins), kMinSamples);
     report.polar_log_psd_db = polar.total_db;
     report.polar_log_psd_angular_db = polar.angular_db;
     const int plot_size = std::min({kPlotSize, reference.width, reference.height, test.width, test.height});
-    report.spectrum_reference_luma = centred_spectrum_of(reference_spectrum, plot_size);
+    report.spectrum_reference_luma = centred_spectrum_of(reference.luma_spectrum, plot_size);
     report.spectrum_test_luma = centred_spectrum_of(test_spectrum, plot_size);
 
-    if (std::min({reference.width, reference.height, test.width, test.height}) >= 3) {
-        const GradientStatistics reference_gradients =
-            gradient_statistics(reference_luma, reference.width, reference.height);
+    if (reference.has_gradients && std::min(test.width, test.height) >= 3) {
+        if (!reference.gradient_error.empty()) throw Error(reference.gradient_error);
         const GradientStatistics test_gradients = gradient_statistics(test_luma, test.width, test.height);
-        report.gradient_orientation_degrees =
-            circular_wasserstein1_degrees(reference_gradients.orientation, test_gradients.orientation);
-        double mean_magnitude = 0;
-        for (float m : reference_gradients.magnitude_over_sigma) mean_magnitude += m;
-        mean_magnitude /= double(reference_gradients.magnitude_over_sigma.size());
+        report.gradient_orientation_degrees = circular_wasserstein1_degrees(reference.orientation, test_gradients.orientation);
         report.gradient_magnitude_w1 =
-            wasserstein1(reference_gradients.magnitude_over_sigma, test_gradients.magnitude_over_sigma) / mean_magnitude;
+            wasserstein1_of_sorted(reference.sorted_magnitude, sorted_doubles(test_gradients.magnitude_over_sigma)) /
+            reference.mean_magnitude;
     } else {
         report.gradient_orientation_degrees = report.gradient_magnitude_w1 = std::numeric_limits<double>::quiet_NaN();
     }
-    report.false_colour_rate = false_colour_rate(reference, test);
+    report.false_colour_rate = outside_region_rate(reference.held_chroma, test);
     return report;
 }
 

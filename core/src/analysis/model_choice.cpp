@@ -48,11 +48,11 @@ AnalysisOptions options_for(const Model& model, ColourMode colour_mode, bool joi
 
 }  // namespace
 
-ModelScore score_against_photo(const TextureDescription& description, const Image& photo, int max_side)
+ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side)
 {
     RenderSettings settings;
-    settings.width = std::min(photo.width, max_side);
-    settings.height = std::min(photo.height, max_side);
+    settings.width = std::min(photo.width(), max_side);
+    settings.height = std::min(photo.height(), max_side);
     settings.units_per_pixel = 1.0 / description.pixels_per_unit;
     settings.threads = 1;  // the candidates run side by side
     const Image synthesis = render(*make_texture(description), settings);
@@ -123,6 +123,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     std::mutex progress_mutex;
     std::size_t finished = 0;
     if (progress) progress(0.0, "fitting every model");
+    const ComparisonReference photo_side(photo);  // one photo, every candidate scored against it
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         Candidate& candidate = candidates[i];
         const Model& model = *candidate.model;
@@ -131,7 +132,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         try {
             candidate.description =
                 analyze(photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options));
-            candidate.score = score_against_photo(candidate.description, photo, max_scoring_side);
+            candidate.score = score_against_photo(candidate.description, photo_side, max_scoring_side);
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
         }
