@@ -54,9 +54,8 @@ TextureDescription morph(const TextureDescription& a, const TextureDescription& 
     if (a.colour_mode != b.colour_mode)
         throw Error(std::string("morph: colour modes differ (") + to_string(a.colour_mode) + " vs " +
                     to_string(b.colour_mode) + ")");
-    // Joint colour is interpolated only between textures that both have it: throws otherwise.
-    if (a.chroma_given_brightness.enabled() != b.chroma_given_brightness.enabled())
-        morphed_joint_colour(a.chroma_given_brightness, b.chroma_given_brightness, t);
+    // Joint colour is interpolated only between textures that both have it (t = 0 and 1 too).
+    require_joint_colour_in_both_or_neither(a.chroma_given_brightness, b.chroma_given_brightness);
     if (t == 0) return a;
     if (t == 1) return b;
 

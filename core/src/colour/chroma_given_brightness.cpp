@@ -123,13 +123,18 @@ void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis)
     }
 }
 
-ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t)
+void require_joint_colour_in_both_or_neither(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b)
 {
-    if (!a.enabled() && !b.enabled()) return {};
     if (a.enabled() != b.enabled())
         throw Error(std::string("morph: only the ") + (a.enabled() ? "first" : "second") +
                     " texture has joint colour (colour.chroma_given_brightness), and its chroma residuals cannot be "
                     "interpolated with the other's chroma values; analyse both photos with the same --joint-colour");
+}
+
+ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t)
+{
+    require_joint_colour_in_both_or_neither(a, b);
+    if (!a.enabled()) return {};
     ChromaGivenBrightness result;
     result.z = a.z;
     const ChromaConditioning resample_b(b);

@@ -55,6 +55,8 @@ void flip_joint_colour_axis(ChromaGivenBrightness& curves, int axis);
 /// 0.027). Rescaling one side's residual needs its histogram map or its model's channel gain,
 /// which not every texture has in a model-independent form.
 ChromaGivenBrightness morphed_joint_colour(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b, double t);
+/// Throws Error (naming the texture that has it) unless both or neither has joint colour.
+void require_joint_colour_in_both_or_neither(const ChromaGivenBrightness& a, const ChromaGivenBrightness& b);
 
 /// Evaluation of the curves (uniform knots, linear interpolation, constant beyond the ends).
 class ChromaConditioning {
