@@ -37,14 +37,6 @@ float LrpFilter::response(double fx, double fy, double spread) const
     return g <= response_floor ? 0.0f : float((g - response_floor) / (1 - response_floor));
 }
 
-void LrpTerms::push(float fx_, float fy_, const float re_[3], const float im_[3])
-{
-    fx()[count] = fx_;
-    fy()[count] = fy_;
-    for (int c = 0; c < 3; ++c) re(c)[count] = re_[c], im(c)[count] = im_[c];
-    live = ++count;
-}
-
 void LrpTerms::pad()
 {
     const float zero[3] = {0, 0, 0};
