@@ -145,6 +145,7 @@ struct RegionTerms {
 struct RegionScratch {
     std::vector<double> x, y;
     std::vector<float> m[3], value[3];
+    std::vector<double> kept[3];               // m in double, for the colour mapping
     std::vector<float> turbulence[2][2];  // component, stratum: channel 0 per pixel
     std::vector<LrpStructureSamples> samples;  // per pixel
     std::vector<float> dx, dy, sums[3];        // per structure sample
@@ -266,10 +267,9 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
             }
         }
     }
-    for (std::size_t p = 0; p < pixels; ++p) {
-        const float m[3] = {s.m[0][p], s.m[1][p], s.m[2][p]};
-        rgb.set(p, finish(m, dropped));
-    }
+    // finish() for the whole region at once (the batch colour mapping: the same operations).
+    for (int c = 0; c < 3; ++c) s.kept[c].assign(s.m[c].begin(), s.m[c].begin() + std::ptrdiff_t(pixels));
+    colour_.to_rgb({s.kept[0].data(), s.kept[1].data(), s.kept[2].data()}, 1.0, dropped, rgb, 0, pixels);
 }
 
 void LrpTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& rgb) const
