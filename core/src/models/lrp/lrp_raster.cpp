@@ -36,6 +36,28 @@ Scratch& scratch()
     return s;
 }
 
+/// One lattice row's tables in the lattice-row raster, kept while pixel rows need them.
+struct LatticeRowTables {
+    std::int64_t j = 0;
+    bool made = false;
+    std::vector<float> fx, fy, re[3], im[3];  // term t of window w at [t · windows + w]; 0 past its live terms
+    std::vector<float> sine, cosine;          // column factors, [(dix · terms + t) · stride + k]
+};
+
+/// The lattice-row raster's buffers, one per thread.
+struct RowScratch {
+    std::vector<std::int32_t> window;  // per grid column: its nearest lattice column − i_begin
+    std::vector<float> dx, rx2;        // per slot dix and grid column, [dix · stride + k]
+    LatticeRowTables rows[3];          // lattice row j in rows[j mod 3]
+    std::vector<float> p[3], q[3];     // row factors of the pixel row's three lattice rows
+};
+
+RowScratch& row_scratch()
+{
+    thread_local RowScratch s;
+    return s;
+}
+
 std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
 void reset(std::vector<float>& buffer, std::size_t size)
@@ -52,11 +74,124 @@ std::pair<int, int> within(const double* position, int count, double centre, dou
     return {int(begin - position), int(end - position)};
 }
 
+lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
+{
+    return normalisation == LrpNormalisation::variance    ? lrp_raster::Normalisation::variance
+           : normalisation == LrpNormalisation::partition ? lrp_raster::Normalisation::partition
+                                                          : lrp_raster::Normalisation::none;
+}
+
+/// The raster for windows a few pixels wide (lrp_raster.h): pixels of a row in the lanes, each
+/// lane with its own 3×3 windows. False (nothing written) where the terms do not cover every
+/// pixel's 3×3 windows.
+bool lattice_row_raster(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
+                        float* const out[3])
+{
+    const LrpLattice& lattice = noise.lattice();
+    const std::size_t width = std::size_t(grid.width);
+    // nearest() never decreases along an axis: the ends' 3×3 bound every pixel's.
+    if (lattice.nearest(0, grid.x[0]) - 1 < terms.i_begin() || lattice.nearest(0, grid.x[width - 1]) + 1 >= terms.i_end() ||
+        lattice.nearest(1, grid.y[0]) - 1 < terms.j_begin() ||
+        lattice.nearest(1, grid.y[grid.height - 1]) + 1 >= terms.j_end())
+        return false;
+    RowScratch& s = row_scratch();
+    const std::size_t stride = round_up(width, lrp_raster::padding) + lrp_raster::padding;
+    const std::int64_t i_begin = terms.i_begin();
+    const std::size_t lattice_columns = std::size_t(terms.i_end() - i_begin);
+    const std::size_t windows = round_up(lattice_columns, lrp_raster::padding) + lrp_raster::padding;
+    int live = 0;
+    for (std::int64_t j = terms.j_begin(); j < terms.j_end(); ++j)
+        for (std::int64_t i = terms.i_begin(); i < terms.i_end(); ++i) live = std::max(live, terms.at(i, j).live);
+    const std::size_t term_count = std::size_t(live);
+    constexpr float extent = float(lrp_window_radius * lrp_window_radius);
+
+    // Per grid column: its nearest lattice column, and dx, rx² to that column's neighbours
+    // (sum_windows' arithmetic). The padding repeats the last window and lies outside every window.
+    s.window.resize(std::max(s.window.size(), stride));
+    s.dx.resize(std::max(s.dx.size(), 3 * stride));
+    s.rx2.resize(std::max(s.rx2.size(), 3 * stride));
+    for (std::size_t k = 0; k < stride; ++k) {
+        if (k >= width) {
+            s.window[k] = s.window[width - 1];
+            for (std::size_t dix = 0; dix < 3; ++dix) s.dx[dix * stride + k] = 0, s.rx2[dix * stride + k] = 2 * extent;
+            continue;
+        }
+        const std::int64_t cx = lattice.nearest(0, grid.x[k]);
+        s.window[k] = std::int32_t(cx - i_begin);
+        for (std::size_t dix = 0; dix < 3; ++dix) {
+            const float dx = float(grid.x[k] - (lattice.origin[0] + double(cx + std::int64_t(dix) - 1) * lattice.spacing[0]));
+            const float rx = dx * lattice.inverse_spacing[0];
+            s.dx[dix * stride + k] = dx, s.rx2[dix * stride + k] = rx * rx;
+        }
+    }
+
+    const std::size_t factors = term_count * windows;
+    for (LatticeRowTables& row : s.rows) row.made = false;
+    const auto tables_of = [&](std::int64_t j) -> const LatticeRowTables& {
+        LatticeRowTables& row = s.rows[std::size_t(((j % 3) + 3) % 3)];
+        if (row.made && row.j == j) return row;
+        row.j = j, row.made = true;
+        // The lattice row's terms, transposed: a term of every window along the lanes.
+        for (std::vector<float>* plane : {&row.fx, &row.fy, &row.re[0], &row.re[1], &row.re[2], &row.im[0], &row.im[1], &row.im[2]})
+            plane->assign(factors + lrp_raster::padding, 0.0f);
+        for (std::size_t w = 0; w < lattice_columns; ++w) {
+            const LrpTermView view = terms.at(i_begin + std::int64_t(w), j);
+            for (std::size_t t = 0; t < std::size_t(view.live); ++t) {
+                const std::size_t at = t * windows + w;
+                row.fx[at] = view.fx()[t], row.fy[at] = view.fy()[t];
+                for (int c = 0; c < 3; ++c) row.re[c][at] = view.re(c)[t], row.im[c][at] = view.im(c)[t];
+            }
+        }
+        row.sine.resize(std::max(row.sine.size(), 3 * term_count * stride));
+        row.cosine.resize(std::max(row.cosine.size(), 3 * term_count * stride));
+        for (std::size_t dix = 0; dix < 3; ++dix)
+            for (std::size_t t = 0; t < term_count; ++t) {
+                const std::size_t at = (dix * term_count + t) * stride;
+                lrp_raster::gathered_sincos(row.fx.data() + t * windows, s.window.data(), std::int32_t(dix) - 1,
+                                            s.dx.data() + dix * stride, width, row.sine.data() + at, row.cosine.data() + at);
+            }
+        return row;
+    };
+
+    lrp_raster::PixelRow row;
+    row.count = width, row.terms = live, row.window = s.window.data(), row.rx2 = s.rx2.data(), row.stride = stride;
+    row.plane = lrp_raster::factor_plane(int(factors)), row.windows = windows;
+    row.normalisation = kernel_normalisation(noise.normalisation());
+    for (int r = 0; r < grid.height; ++r) {
+        const std::int64_t cy = lattice.nearest(1, grid.y[r]);
+        for (int dj = 0; dj < 3; ++dj) {
+            const std::int64_t j = cy + dj - 1;
+            const float dy = float(grid.y[r] - (lattice.origin[1] + double(j) * lattice.spacing[1]));
+            const float ry = dy * lattice.inverse_spacing[1];
+            row.ry2[dj] = ry * ry;
+            row.reaches[dj] = row.ry2[dj] < extent;
+            if (!row.reaches[dj]) continue;
+            const LatticeRowTables& tables = tables_of(j);
+            s.p[dj].resize(std::max(s.p[dj].size(), 3 * row.plane));
+            s.q[dj].resize(std::max(s.q[dj].size(), 3 * row.plane));
+            const float* const re[3] = {tables.re[0].data(), tables.re[1].data(), tables.re[2].data()};
+            const float* const im[3] = {tables.im[0].data(), tables.im[1].data(), tables.im[2].data()};
+            lrp_raster::row_factors(dy, tables.fy.data(), re, im, int(factors), s.p[dj].data(), s.q[dj].data());
+            row.cosine[dj] = tables.cosine.data(), row.sine[dj] = tables.sine.data();
+            row.p[dj] = s.p[dj].data(), row.q[dj] = s.q[dj].data();
+        }
+        for (int c = 0; c < 3; ++c) row.out[c] = out[c] + std::size_t(r) * width;
+        lrp_raster::accumulate_pixel_row(row);
+    }
+    return true;
+}
+
 }  // namespace
 
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
-                        float* const out[3])
+                        float* const out[3], LrpRasterMethod method)
 {
+    if (method == LrpRasterMethod::automatic) {
+        const double step = grid.width > 1 ? (grid.x[grid.width - 1] - grid.x[0]) / (grid.width - 1) : 1.0;
+        method = noise.lattice().spacing[0] < lrp_lattice_row_spacing * step ? LrpRasterMethod::lattice_rows
+                                                                               : LrpRasterMethod::separable;
+    }
+    if (method == LrpRasterMethod::lattice_rows && lattice_row_raster(noise, terms, grid, out)) return;
     Scratch& s = scratch();
     const LrpLattice& lattice = noise.lattice();
     const std::size_t row_stride = round_up(std::size_t(grid.width), lrp_raster::padding) + lrp_raster::padding;
@@ -147,17 +282,9 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
             }
         }
     }
-    // sum_windows' normalisation.
-    const LrpNormalisation normalisation = noise.normalisation();
-    for (int r = 0; r < grid.height; ++r)
-        for (int k = 0; k < grid.width; ++k) {
-            const std::size_t at = std::size_t(r) * row_stride + std::size_t(k);
-            const float scale = normalisation == LrpNormalisation::variance    ? 1.0f / std::sqrt(s.weight_squared[at])
-                                : normalisation == LrpNormalisation::partition ? 1.0f / s.weight[at]
-                                                                               : 1.0f;
-            const std::size_t pixel = std::size_t(r) * std::size_t(grid.width) + std::size_t(k);
-            for (int c = 0; c < 3; ++c) out[c][pixel] = s.sum[c][at] * scale;
-        }
+    const float* const sums[3] = {s.sum[0].data(), s.sum[1].data(), s.sum[2].data()};
+    lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
+                          kernel_normalisation(noise.normalisation()), out);
 }
 
 }  // namespace stochtex

@@ -66,29 +66,44 @@ void RowFactors(float dy, const float* fy, const float* const re[3], const float
     });
 }
 
+/// Whether y2 = rx² + ry² lies inside the window (LrpWindowTable::operator()'s test). Where no
+/// lane is, every weight is 0: the kernels branch on this rather than on w > 0, which comes
+/// after the table's gathers (a branch on that waited for them, and mispredicted there).
+template <class D>
+HWY_INLINE hn::Mask<D> InsideWindow(D d, hn::Vec<D> y2)
+{
+    return hn::Lt(y2, hn::Set(d, float(lrp_window_radius * lrp_window_radius)));
+}
+
+/// LrpWindowTable::operator() at y2 = rx² + ry², lane by lane (the clamp keeps the gathers in
+/// the table; those lanes are 0).
+template <class D>
+HWY_INLINE hn::Vec<D> WindowWeight(D d, hn::Vec<D> y2)
+{
+    const hn::RebindToSigned<D> di;
+    const LrpWindowTable& window = LrpWindowTable::shared();
+    const float* table = window.values();
+    const auto extent = hn::Set(d, float(lrp_window_radius * lrp_window_radius));
+    const auto inside = InsideWindow(d, y2);
+    const auto t = hn::Mul(hn::Min(y2, extent), hn::Set(d, window.scale()));
+    const auto i = hn::ConvertTo(di, t);
+    const auto f = hn::Sub(t, hn::ConvertTo(d, i));
+    const auto v0 = hn::GatherIndex(d, table, i), v1 = hn::GatherIndex(d, table, hn::Add(i, hn::Set(di, 1)));
+    return hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
+}
+
 template <class D>
 HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
 {
-    const hn::RebindToSigned<D> di;
     const std::size_t lanes = hn::Lanes(d);
-    const LrpWindowTable& window = LrpWindowTable::shared();
-    const float* table = window.values();
-    const auto scale = hn::Set(d, window.scale());
-    const auto extent = hn::Set(d, float(lrp_window_radius * lrp_window_radius));
     const auto ry2 = hn::Set(d, row.ry2);
     const auto zero = hn::Zero(d);
     const std::size_t terms = std::size_t(row.terms), plane = factor_plane(row.terms);
     for (std::size_t k = 0; k < row.count; k += lanes) {
-        // LrpWindowTable::operator() (the clamp keeps the gathers in the table; those lanes are 0).
         const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + k), ry2);
-        const auto inside = hn::Lt(y2, extent);
-        const auto t = hn::Mul(hn::Min(y2, extent), scale);
-        const auto i = hn::ConvertTo(di, t);
-        const auto f = hn::Sub(t, hn::ConvertTo(d, i));
-        const auto v0 = hn::GatherIndex(d, table, i), v1 = hn::GatherIndex(d, table, hn::Add(i, hn::Set(di, 1)));
-        const auto w = hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
+        if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
+        const auto w = WindowWeight(d, y2);
         const auto live = hn::Gt(w, zero);
-        if (hn::AllFalse(d, live)) continue;
         if (terms > 0) {
             // sum_terms_separable: one running sum per channel, term after term.
             hn::Vec<D> local[3] = {zero, zero, zero};
@@ -108,6 +123,124 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
         hn::StoreU(hn::IfThenElse(live, hn::Add(weight, w), weight), d, row.weight + k);
         const auto squared = hn::LoadU(d, row.weight_squared + k);
         hn::StoreU(hn::IfThenElse(live, hn::Add(squared, hn::Mul(w, w)), squared), d, row.weight_squared + k);
+    }
+}
+
+/// sum_windows' last step: out[c][at…] = sum[c] · scale, scale = 1/√weight_squared, 1/weight
+/// or 1, for the first `left` lanes.
+template <class D>
+HWY_INLINE void StoreNormalised(D d, const hn::Vec<D> sum[3], hn::Vec<D> weight, hn::Vec<D> weight_squared,
+                                Normalisation normalisation, std::size_t left, float* const out[3], std::size_t at)
+{
+    const auto one = hn::Set(d, 1.0f);
+    const auto scale = normalisation == Normalisation::variance    ? hn::Div(one, hn::Sqrt(weight_squared))
+                       : normalisation == Normalisation::partition ? hn::Div(one, weight)
+                                                                   : one;
+    for (int c = 0; c < 3; ++c) {
+        const auto value = hn::Mul(sum[c], scale);
+        if (left >= hn::Lanes(d))
+            hn::StoreU(value, d, out[c] + at);
+        else
+            hn::BlendedStore(value, hn::FirstN(d, left), d, out[c] + at);
+    }
+}
+
+void Normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
+               std::size_t width, int rows, Normalisation normalisation, float* const out[3])
+{
+    const hn::ScalableTag<float> d;
+    const std::size_t lanes = hn::Lanes(d);
+    for (std::size_t r = 0; r < std::size_t(rows); ++r)
+        for (std::size_t k = 0; k < width; k += lanes) {
+            const std::size_t at = r * stride + k;
+            const hn::Vec<decltype(d)> sums[3] = {hn::LoadU(d, sum[0] + at), hn::LoadU(d, sum[1] + at),
+                                                  hn::LoadU(d, sum[2] + at)};
+            StoreNormalised(d, sums, hn::LoadU(d, weight + at), hn::LoadU(d, weight_squared + at), normalisation,
+                            width - k, out, r * width + k);
+        }
+}
+
+void GatheredSinCos(const float* a, const std::int32_t* index, std::int32_t offset, const float* b, std::size_t count,
+                    float* sine, float* cosine)
+{
+    const hn::ScalableTag<float> d;
+    const hn::RebindToSigned<decltype(d)> di;
+    const std::size_t lanes = hn::Lanes(d);
+    const auto voffset = hn::Set(di, offset);
+    for (std::size_t k = 0; k < count; k += lanes) {
+        const auto va = hn::GatherIndex(d, a, hn::Add(hn::LoadU(di, index + k), voffset));
+        hn::Vec<decltype(d)> s, c;
+        FastSinCosTurns(d, hn::Mul(va, hn::LoadU(d, b + k)), s, c);
+        hn::StoreU(s, d, sine + k);
+        hn::StoreU(c, d, cosine + k);
+    }
+}
+
+/// One vector of pixels of a PixelRow from k: the 3×3 windows in sum_windows' order, then the
+/// normalisation. `Permute`: the vector's windows are fewer than its lanes, so a window's row
+/// factors come from one load of consecutive windows and a lane permutation (else gathers).
+template <bool Permute, class D>
+HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
+{
+    const hn::RebindToSigned<D> di;
+    const auto zero = hn::Zero(d);
+    const std::int32_t base = row.window[k];
+    const auto window = hn::LoadU(di, row.window + k);
+    // (Masked to the lane count so that the gathering instantiation makes valid indices too.)
+    const auto lane = hn::IndicesFromVec(
+        d, hn::And(hn::Sub(window, hn::Set(di, base)), hn::Set(di, std::int32_t(hn::Lanes(d)) - 1)));
+    const std::size_t terms = std::size_t(row.terms);
+    hn::Vec<D> sum[3] = {zero, zero, zero};
+    auto weight = zero, weight_squared = zero;
+    for (int dj = 0; dj < 3; ++dj) {
+        if (!row.reaches[dj]) continue;
+        const auto ry2 = hn::Set(d, row.ry2[dj]);
+        for (int dix = 0; dix < 3; ++dix) {
+            const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + std::size_t(dix) * row.stride + k), ry2);
+            if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
+            const auto w = WindowWeight(d, y2);
+            const auto live = hn::Gt(w, zero);
+            // Slot dix's window of each lane is window + dix − 1.
+            const auto gathered = hn::Add(window, hn::Set(di, dix - 1));
+            const auto expand = [&](const float* factors) {
+                if constexpr (Permute)
+                    return hn::TableLookupLanes(hn::LoadU(d, factors + base + dix - 1), lane);
+                else
+                    return hn::GatherIndex(d, factors, gathered);
+            };
+            // sum_terms_separable's running sums, the window's zero terms past its live ones
+            // included (they add ±0 to a sum that is never −0: no change).
+            hn::Vec<D> local[3] = {zero, zero, zero};
+            for (std::size_t t = 0; t < terms; ++t) {
+                const std::size_t column = (std::size_t(dix) * terms + t) * row.stride + k;
+                const auto ca = hn::LoadU(d, row.cosine[dj] + column);
+                const auto sa = hn::LoadU(d, row.sine[dj] + column);
+                for (std::size_t c = 0; c < 3; ++c) {
+                    const std::size_t factor = c * row.plane + t * row.windows;
+                    local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, expand(row.p[dj] + factor)),
+                                                         hn::Mul(sa, expand(row.q[dj] + factor))));
+                }
+            }
+            // sum_windows: a window of no live terms adds w · 0 (the same: sum is never −0).
+            for (int c = 0; c < 3; ++c) sum[c] = hn::IfThenElse(live, hn::Add(sum[c], hn::Mul(w, local[c])), sum[c]);
+            weight = hn::IfThenElse(live, hn::Add(weight, w), weight);
+            weight_squared = hn::IfThenElse(live, hn::Add(weight_squared, hn::Mul(w, w)), weight_squared);
+        }
+    }
+    StoreNormalised(d, sum, weight, weight_squared, row.normalisation, row.count - k, row.out, k);
+}
+
+void AccumulatePixelRow(const PixelRow& row)
+{
+    const hn::ScalableTag<float> d;
+    const std::size_t lanes = hn::Lanes(d);
+    for (std::size_t k = 0; k < row.count; k += lanes) {
+        // The row's windows increase along it: the vector spans window[k] … window[k + lanes − 1]
+        // (the padding repeats the last window).
+        if (std::size_t(row.window[k + lanes - 1] - row.window[k]) < lanes)
+            PixelVector<true>(d, row, k);
+        else
+            PixelVector<false>(d, row, k);
     }
 }
 
@@ -155,6 +288,9 @@ HWY_EXPORT(SinCosOfProducts);
 HWY_EXPORT(AccumulateWindowRow);
 HWY_EXPORT(RowFactors);
 HWY_EXPORT(SumTermsAt);
+HWY_EXPORT(GatheredSinCos);
+HWY_EXPORT(AccumulatePixelRow);
+HWY_EXPORT(Normalise);
 
 void sincos_of_products(float a, const float* b, std::size_t count, float* sine, float* cosine)
 {
@@ -175,6 +311,23 @@ void sum_terms_at(const LrpTermView& terms, const float* dx, const float* dy, st
 void accumulate_window_row(const WindowRow& row)
 {
     HWY_DYNAMIC_DISPATCH(AccumulateWindowRow)(row);
+}
+
+void gathered_sincos(const float* a, const std::int32_t* index, std::int32_t offset, const float* b, std::size_t count,
+                     float* sine, float* cosine)
+{
+    HWY_DYNAMIC_DISPATCH(GatheredSinCos)(a, index, offset, b, count, sine, cosine);
+}
+
+void accumulate_pixel_row(const PixelRow& row)
+{
+    HWY_DYNAMIC_DISPATCH(AccumulatePixelRow)(row);
+}
+
+void normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
+               std::size_t width, int rows, Normalisation normalisation, float* const out[3])
+{
+    HWY_DYNAMIC_DISPATCH(Normalise)(sum, weight, weight_squared, stride, width, rows, normalisation, out);
 }
 
 }  // namespace stochtex::lrp_raster
