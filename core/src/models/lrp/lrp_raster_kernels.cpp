@@ -160,35 +160,70 @@ void Normalise(const float* const sum[3], const float* weight, const float* weig
         }
 }
 
+/// The windows of a vector of pixels, window[k …] (never decreasing along it): factors[window +
+/// offset] per lane, by one load of consecutive windows from the first lane's and a lane
+/// permutation (`Permute`: the vector spans fewer windows than lanes), else by a gather.
+template <class D>
+struct LaneWindows {
+    using VI = hn::Vec<hn::RebindToSigned<D>>;
+    std::int32_t base;
+    VI window;
+    decltype(hn::IndicesFromVec(D(), VI())) lane;
+
+    LaneWindows(D d, const std::int32_t* first)
+        : base(*first),
+          window(hn::LoadU(hn::RebindToSigned<D>(), first)),
+          // (Masked to the lane count so that the gathering form makes valid indices too.)
+          lane(hn::IndicesFromVec(d, hn::And(hn::Sub(window, hn::Set(hn::RebindToSigned<D>(), base)),
+                                             hn::Set(hn::RebindToSigned<D>(), std::int32_t(hn::Lanes(d)) - 1))))
+    {
+    }
+    /// Whether the vector from `first` spans fewer windows than lanes (reads a vector of it).
+    static bool permutable(D d, const std::int32_t* first)
+    {
+        return std::size_t(first[hn::Lanes(d) - 1] - first[0]) < hn::Lanes(d);
+    }
+    template <bool Permute>
+    hn::Vec<D> of(D d, const float* factors, std::int32_t offset) const
+    {
+        if constexpr (Permute)
+            return hn::TableLookupLanes(hn::LoadU(d, factors + base + offset), lane);
+        else
+            return hn::GatherIndex(d, factors, hn::Add(window, hn::Set(hn::RebindToSigned<D>(), offset)));
+    }
+};
+
+template <bool Permute, class D>
+HWY_INLINE void WindowSinCosVector(D d, const float* a, const std::int32_t* index, std::int32_t offset, const float* b,
+                                   float* sine, float* cosine)
+{
+    const LaneWindows<D> windows(d, index);
+    hn::Vec<D> s, c;
+    FastSinCosTurns(d, hn::Mul(windows.template of<Permute>(d, a, offset), hn::LoadU(d, b)), s, c);
+    hn::StoreU(s, d, sine);
+    hn::StoreU(c, d, cosine);
+}
+
 void GatheredSinCos(const float* a, const std::int32_t* index, std::int32_t offset, const float* b, std::size_t count,
                     float* sine, float* cosine)
 {
     const hn::ScalableTag<float> d;
-    const hn::RebindToSigned<decltype(d)> di;
     const std::size_t lanes = hn::Lanes(d);
-    const auto voffset = hn::Set(di, offset);
     for (std::size_t k = 0; k < count; k += lanes) {
-        const auto va = hn::GatherIndex(d, a, hn::Add(hn::LoadU(di, index + k), voffset));
-        hn::Vec<decltype(d)> s, c;
-        FastSinCosTurns(d, hn::Mul(va, hn::LoadU(d, b + k)), s, c);
-        hn::StoreU(s, d, sine + k);
-        hn::StoreU(c, d, cosine + k);
+        if (LaneWindows<decltype(d)>::permutable(d, index + k))
+            WindowSinCosVector<true>(d, a, index + k, offset, b + k, sine + k, cosine + k);
+        else
+            WindowSinCosVector<false>(d, a, index + k, offset, b + k, sine + k, cosine + k);
     }
 }
 
 /// One vector of pixels of a PixelRow from k: the 3×3 windows in sum_windows' order, then the
-/// normalisation. `Permute`: the vector's windows are fewer than its lanes, so a window's row
-/// factors come from one load of consecutive windows and a lane permutation (else gathers).
+/// normalisation; each lane's row factors by LaneWindows.
 template <bool Permute, class D>
 HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
 {
-    const hn::RebindToSigned<D> di;
     const auto zero = hn::Zero(d);
-    const std::int32_t base = row.window[k];
-    const auto window = hn::LoadU(di, row.window + k);
-    // (Masked to the lane count so that the gathering instantiation makes valid indices too.)
-    const auto lane = hn::IndicesFromVec(
-        d, hn::And(hn::Sub(window, hn::Set(di, base)), hn::Set(di, std::int32_t(hn::Lanes(d)) - 1)));
+    const LaneWindows<D> windows(d, row.window + k);
     const std::size_t terms = std::size_t(row.terms);
     hn::Vec<D> sum[3] = {zero, zero, zero};
     auto weight = zero, weight_squared = zero;
@@ -201,13 +236,7 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
             const auto w = WindowWeight(d, y2);
             const auto live = hn::Gt(w, zero);
             // Slot dix's window of each lane is window + dix − 1.
-            const auto gathered = hn::Add(window, hn::Set(di, dix - 1));
-            const auto expand = [&](const float* factors) {
-                if constexpr (Permute)
-                    return hn::TableLookupLanes(hn::LoadU(d, factors + base + dix - 1), lane);
-                else
-                    return hn::GatherIndex(d, factors, gathered);
-            };
+            const auto expand = [&](const float* factors) { return windows.template of<Permute>(d, factors, dix - 1); };
             // sum_terms_separable's running sums, the window's zero terms past its live ones
             // included (they add ±0 to a sum that is never −0: no change).
             hn::Vec<D> local[3] = {zero, zero, zero};
@@ -235,9 +264,8 @@ void AccumulatePixelRow(const PixelRow& row)
     const hn::ScalableTag<float> d;
     const std::size_t lanes = hn::Lanes(d);
     for (std::size_t k = 0; k < row.count; k += lanes) {
-        // The row's windows increase along it: the vector spans window[k] … window[k + lanes − 1]
-        // (the padding repeats the last window).
-        if (std::size_t(row.window[k + lanes - 1] - row.window[k]) < lanes)
+        // (The padding repeats the last window: a vector past the row reads its own padding.)
+        if (LaneWindows<decltype(d)>::permutable(d, row.window + k))
             PixelVector<true>(d, row, k);
         else
             PixelVector<false>(d, row, k);

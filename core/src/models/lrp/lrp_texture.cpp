@@ -147,7 +147,7 @@ struct RegionScratch {
     std::vector<float> m[3], value[3];
     std::vector<double> kept[3];               // m in double, for the colour mapping
     std::vector<float> turbulence[2][2];  // component, stratum: channel 0 per pixel
-    std::vector<LrpStructureSamples> samples;  // per pixel
+    std::vector<LrpStructureSamples> samples;  // per pixel of a chunk
     std::vector<float> dx, dy, sums[3];        // per structure sample
 };
 
@@ -227,33 +227,39 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
             };
         };
         if (cache_blocks && structure_->single_block()) {
-            // One block: every sample is sum_terms of the same terms, so the samples of the whole
-            // region go through the SIMD kernel at once (pixels as lanes), then combine as
-            // eval_with does.
-            s.samples.resize(pixels);
-            s.dx.clear(), s.dy.clear();
-            for (std::size_t p = 0; p < pixels; ++p) {
-                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
-                s.samples[p] = structure_->samples(x, y, turbulence_at(p));
-                for (int k = 0; k < s.samples[p].count; ++k) {
-                    float dx, dy;
-                    structure_->nearest_offset(s.samples[p].sample[k].xi, s.samples[p].sample[k].eta, dx, dy);
-                    s.dx.push_back(dx), s.dy.push_back(dy);
+            // One block: every sample is sum_terms of the same terms, so the samples go through
+            // the SIMD kernel together (pixels as lanes), then combine as eval_with does. In
+            // chunks of pixels: a whole region's samples (~100 bytes a pixel) left the cache
+            // between their making and their use.
+            constexpr std::size_t chunk = 1024;
+            for (std::size_t first = 0; first < pixels; first += chunk) {
+                const std::size_t end = std::min(pixels, first + chunk);
+                s.samples.resize(chunk);
+                s.dx.clear(), s.dy.clear();
+                for (std::size_t p = first; p < end; ++p) {
+                    const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                    LrpStructureSamples& samples = s.samples[p - first];
+                    samples = structure_->samples(x, y, turbulence_at(p));
+                    for (int k = 0; k < samples.count; ++k) {
+                        float dx, dy;
+                        structure_->nearest_offset(samples.sample[k].xi, samples.sample[k].eta, dx, dy);
+                        s.dx.push_back(dx), s.dy.push_back(dy);
+                    }
                 }
-            }
-            const std::size_t n = s.dx.size();
-            s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
-            for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
-            float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
-            lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
-            std::size_t next = 0;
-            for (std::size_t p = 0; p < pixels; ++p) {
-                const LrpStructureSamples& samples = s.samples[p];
-                float structure[3] = {0, 0, 0};
-                for (int k = 0; k < samples.count; ++k, ++next)
-                    for (int c = 0; c < 3; ++c)
-                        structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
-                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+                const std::size_t n = s.dx.size();
+                s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
+                for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
+                float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
+                lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
+                std::size_t next = 0;
+                for (std::size_t p = first; p < end; ++p) {
+                    const LrpStructureSamples& samples = s.samples[p - first];
+                    float structure[3] = {0, 0, 0};
+                    for (int k = 0; k < samples.count; ++k, ++next)
+                        for (int c = 0; c < 3; ++c)
+                            structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
+                    for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+                }
             }
         } else {
             for (std::size_t p = 0; p < pixels; ++p) {
