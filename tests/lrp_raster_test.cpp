@@ -102,6 +102,23 @@ std::vector<double> raster_errors(const LrpStratumNoise& noise, const LrpFilter&
     return errors;
 }
 
+/// lrp_raster_stratum_drawn (the lattice-row raster drawing its own terms) against eval(), bit for bit.
+void drawn_matches_eval(const LrpStratumNoise& noise, const LrpFilter& filter, const Grid& grid)
+{
+    const std::size_t pixels = grid.x.size() * grid.y.size();
+    std::vector<float> out[3];
+    for (auto& channel : out) channel.resize(pixels);
+    float* const channels[3] = {out[0].data(), out[1].data(), out[2].data()};
+    lrp_raster_stratum_drawn(noise, filter, grid.view(), channels);
+    for (std::size_t r = 0; r < grid.y.size(); ++r)
+        for (std::size_t k = 0; k < grid.x.size(); ++k) {
+            float point[3];
+            noise.eval(grid.x[k], grid.y[r], filter, point);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(out[c][r * grid.x.size() + k], point[c]) << "drawn, pixel " << k << ", " << r << " channel " << c;
+        }
+}
+
 double max_abs(const std::vector<double>& e, std::size_t begin, std::size_t end)
 {
     double m = 0;
@@ -152,6 +169,17 @@ TEST(LrpRaster, EveryInstructionSetGivesTheSameRaster)
         for (double step : {0.8, 3.7, 16.0})
             for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
                 raster_errors(noise, LrpFilter{}, make_grid(3.3, step, 45, -7.9, step * 1.375, 5), method);
+        for (double step : {0.8, 3.7, 16.0}) drawn_matches_eval(noise, LrpFilter{}, make_grid(3.3, step, 45, -7.9, step * 1.375, 5));
+        // A footprint of 7 px keeps 8–17 of a window's 24 terms: windows of unequal term counts
+        // side by side (the lattice-row raster's zero terms).
+        const LrpStratumNoise wide = ring_noise(24);
+        const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(7.0), 1.0);
+        for (double step : {0.8, 3.7}) {
+            const Grid grid = make_grid(-40.2, step, 51, 12.9, step, 7);
+            for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+                raster_errors(wide, filter, grid, method);
+            drawn_matches_eval(wide, filter, grid);
+        }
     }
     hwy::SetSupportedTargetsForTest(0);
 }
@@ -168,6 +196,8 @@ TEST(LrpRaster, MatchesThePointPathAndTheDoublePathWithinStatedTolerance)
                 const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(footprint), 1.0);
                 const Grid grid = make_grid(-101.3, step, 67, 55.1, step * 0.9, 9);
                 const std::vector<double> errors = raster_errors(noise, filter, grid, method);
+                // Filtered windows keep different numbers of terms: the drawn form's per-row counts.
+                drawn_matches_eval(noise, filter, grid);
                 const double max = max_abs(errors, 0, errors.size()), r = rms(errors);
                 std::printf("%s, step %.2f px, footprint %.0f px: max %.2e sigma, RMS %.2e sigma over %zu values\n",
                             method == LrpRasterMethod::separable ? "separable" : "lattice rows", step, footprint, max, r,

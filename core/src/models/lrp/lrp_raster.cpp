@@ -40,6 +40,7 @@ Scratch& scratch()
 struct LatticeRowTables {
     std::int64_t j = 0;
     bool made = false;
+    int terms = 0;                            // the most live terms of the row's windows
     std::vector<float> fx, fy, re[3], im[3];  // term t of window w at [t · windows + w]; 0 past its live terms
     std::vector<float> sine, cosine;          // column factors, [(dix · terms + t) · stride + k]
 };
@@ -82,27 +83,18 @@ lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
 }
 
 /// The raster for windows a few pixels wide (lrp_raster.h): pixels of a row in the lanes, each
-/// lane with its own 3×3 windows. False (nothing written) where the terms do not cover every
-/// pixel's 3×3 windows.
-bool lattice_row_raster(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
-                        float* const out[3])
+/// lane with its own 3×3 windows. `view_of(i, j)` gives lattice point (i, j)'s terms (valid until
+/// the next call), for i in [i_begin, i_end) — every pixel's 3×3 windows (the caller checks).
+template <class ViewOf>
+void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std::int64_t i_end, const LrpRasterGrid& grid,
+                        float* const out[3], const ViewOf& view_of)
 {
     const LrpLattice& lattice = noise.lattice();
     const std::size_t width = std::size_t(grid.width);
-    // nearest() never decreases along an axis: the ends' 3×3 bound every pixel's.
-    if (lattice.nearest(0, grid.x[0]) - 1 < terms.i_begin() || lattice.nearest(0, grid.x[width - 1]) + 1 >= terms.i_end() ||
-        lattice.nearest(1, grid.y[0]) - 1 < terms.j_begin() ||
-        lattice.nearest(1, grid.y[grid.height - 1]) + 1 >= terms.j_end())
-        return false;
     RowScratch& s = row_scratch();
     const std::size_t stride = round_up(width, lrp_raster::padding) + lrp_raster::padding;
-    const std::int64_t i_begin = terms.i_begin();
-    const std::size_t lattice_columns = std::size_t(terms.i_end() - i_begin);
+    const std::size_t lattice_columns = std::size_t(i_end - i_begin);
     const std::size_t windows = round_up(lattice_columns, lrp_raster::padding) + lrp_raster::padding;
-    int live = 0;
-    for (std::int64_t j = terms.j_begin(); j < terms.j_end(); ++j)
-        for (std::int64_t i = terms.i_begin(); i < terms.i_end(); ++i) live = std::max(live, terms.at(i, j).live);
-    const std::size_t term_count = std::size_t(live);
     constexpr float extent = float(lrp_window_radius * lrp_window_radius);
 
     // Per grid column: its nearest lattice column, and dx, rx² to that column's neighbours
@@ -125,28 +117,49 @@ bool lattice_row_raster(const LrpStratumNoise& noise, const LrpTermCache& terms,
         }
     }
 
-    const std::size_t factors = term_count * windows;
     for (LatticeRowTables& row : s.rows) row.made = false;
     const auto tables_of = [&](std::int64_t j) -> const LatticeRowTables& {
         LatticeRowTables& row = s.rows[std::size_t(((j % 3) + 3) % 3)];
         if (row.made && row.j == j) return row;
         row.j = j, row.made = true;
-        // The lattice row's terms, transposed: a term of every window along the lanes.
-        for (std::vector<float>* plane : {&row.fx, &row.fy, &row.re[0], &row.re[1], &row.re[2], &row.im[0], &row.im[1], &row.im[2]})
-            plane->assign(factors + lrp_raster::padding, 0.0f);
+        // The lattice row's terms, transposed (a term of every window along the lanes), as many
+        // as its windows' most; a window's terms past its own live ones are 0.
+        std::vector<float>* const planes[8] = {&row.fx, &row.fy, &row.re[0], &row.re[1], &row.re[2], &row.im[0], &row.im[1], &row.im[2]};
+        int live = 0;
+        for (std::vector<float>* plane : planes) {  // what the kernels read past no terms at all
+            plane->resize(std::max(plane->size(), lrp_raster::padding));
+            std::fill_n(plane->begin(), lrp_raster::padding, 0.0f);
+        }
         for (std::size_t w = 0; w < lattice_columns; ++w) {
-            const LrpTermView view = terms.at(i_begin + std::int64_t(w), j);
-            for (std::size_t t = 0; t < std::size_t(view.live); ++t) {
+            const LrpTermView view = view_of(i_begin + std::int64_t(w), j);
+            if (view.live > live) {
+                // More terms than any window before: those rows of the planes start at zero.
+                for (std::vector<float>* plane : planes) {
+                    plane->resize(std::max(plane->size(), std::size_t(view.live) * windows + lrp_raster::padding));
+                    std::fill(plane->begin() + std::ptrdiff_t(std::size_t(live) * windows),
+                              plane->begin() + std::ptrdiff_t(std::size_t(view.live) * windows + lrp_raster::padding), 0.0f);
+                }
+                live = view.live;
+            }
+            for (std::size_t t = 0; t < std::size_t(live); ++t) {
                 const std::size_t at = t * windows + w;
-                row.fx[at] = view.fx()[t], row.fy[at] = view.fy()[t];
-                for (int c = 0; c < 3; ++c) row.re[c][at] = view.re(c)[t], row.im[c][at] = view.im(c)[t];
+                const bool held = t < std::size_t(view.live);
+                row.fx[at] = held ? view.fx()[t] : 0.0f, row.fy[at] = held ? view.fy()[t] : 0.0f;
+                for (int c = 0; c < 3; ++c)
+                    row.re[c][at] = held ? view.re(c)[t] : 0.0f, row.im[c][at] = held ? view.im(c)[t] : 0.0f;
             }
         }
-        row.sine.resize(std::max(row.sine.size(), 3 * term_count * stride));
-        row.cosine.resize(std::max(row.cosine.size(), 3 * term_count * stride));
+        // The windows past the lattice row's (read by the vectors of the last ones) hold zeros.
+        for (std::vector<float>* plane : planes)
+            for (std::size_t t = 0; t < std::size_t(live); ++t)
+                std::fill_n(plane->begin() + std::ptrdiff_t(t * windows + lattice_columns), windows - lattice_columns, 0.0f);
+        row.terms = live;
+        const std::size_t terms = std::size_t(live);
+        row.sine.resize(std::max(row.sine.size(), 3 * terms * stride));
+        row.cosine.resize(std::max(row.cosine.size(), 3 * terms * stride));
         for (std::size_t dix = 0; dix < 3; ++dix)
-            for (std::size_t t = 0; t < term_count; ++t) {
-                const std::size_t at = (dix * term_count + t) * stride;
+            for (std::size_t t = 0; t < terms; ++t) {
+                const std::size_t at = (dix * terms + t) * stride;
                 lrp_raster::gathered_sincos(row.fx.data() + t * windows, s.window.data(), std::int32_t(dix) - 1,
                                             s.dx.data() + dix * stride, width, row.sine.data() + at, row.cosine.data() + at);
             }
@@ -154,8 +167,7 @@ bool lattice_row_raster(const LrpStratumNoise& noise, const LrpTermCache& terms,
     };
 
     lrp_raster::PixelRow row;
-    row.count = width, row.terms = live, row.window = s.window.data(), row.rx2 = s.rx2.data(), row.stride = stride;
-    row.plane = lrp_raster::factor_plane(int(factors)), row.windows = windows;
+    row.count = width, row.window = s.window.data(), row.rx2 = s.rx2.data(), row.stride = stride, row.windows = windows;
     row.normalisation = kernel_normalisation(noise.normalisation());
     for (int r = 0; r < grid.height; ++r) {
         const std::int64_t cy = lattice.nearest(1, grid.y[r]);
@@ -167,31 +179,66 @@ bool lattice_row_raster(const LrpStratumNoise& noise, const LrpTermCache& terms,
             row.reaches[dj] = row.ry2[dj] < extent;
             if (!row.reaches[dj]) continue;
             const LatticeRowTables& tables = tables_of(j);
-            s.p[dj].resize(std::max(s.p[dj].size(), 3 * row.plane));
-            s.q[dj].resize(std::max(s.q[dj].size(), 3 * row.plane));
+            const int factors = tables.terms * int(windows);
+            row.terms[dj] = tables.terms, row.plane[dj] = lrp_raster::factor_plane(factors);
+            s.p[dj].resize(std::max(s.p[dj].size(), 3 * row.plane[dj]));
+            s.q[dj].resize(std::max(s.q[dj].size(), 3 * row.plane[dj]));
             const float* const re[3] = {tables.re[0].data(), tables.re[1].data(), tables.re[2].data()};
             const float* const im[3] = {tables.im[0].data(), tables.im[1].data(), tables.im[2].data()};
-            lrp_raster::row_factors(dy, tables.fy.data(), re, im, int(factors), s.p[dj].data(), s.q[dj].data());
+            lrp_raster::row_factors(dy, tables.fy.data(), re, im, factors, s.p[dj].data(), s.q[dj].data());
             row.cosine[dj] = tables.cosine.data(), row.sine[dj] = tables.sine.data();
             row.p[dj] = s.p[dj].data(), row.q[dj] = s.q[dj].data();
         }
         for (int c = 0; c < 3; ++c) row.out[c] = out[c] + std::size_t(r) * width;
         lrp_raster::accumulate_pixel_row(row);
     }
-    return true;
 }
 
+/// The lattice points [i_begin, i_end) × [j_begin, j_end) whose 3×3 windows hold every grid
+/// pixel's (nearest() never decreases along an axis: the ends' bound every pixel's).
+struct GridWindows {
+    std::int64_t i_begin, i_end, j_begin, j_end;
+    explicit GridWindows(const LrpLattice& lattice, const LrpRasterGrid& grid)
+        : i_begin(lattice.nearest(0, grid.x[0]) - 1),
+          i_end(lattice.nearest(0, grid.x[grid.width - 1]) + 2),
+          j_begin(lattice.nearest(1, grid.y[0]) - 1),
+          j_end(lattice.nearest(1, grid.y[grid.height - 1]) + 2)
+    {
+    }
+};
+
 }  // namespace
+
+bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid)
+{
+    const double step = grid.width > 1 ? (grid.x[grid.width - 1] - grid.x[0]) / (grid.width - 1) : 1.0;
+    return noise.lattice().spacing[0] < lrp_lattice_row_spacing * step;
+}
+
+void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
+                              float* const out[3])
+{
+    const GridWindows needed(noise.lattice(), grid);
+    thread_local LrpTerms scratch;
+    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, [&](std::int64_t i, std::int64_t j) {
+        scratch.count = 0;
+        noise.draw(i, j, filter, scratch);
+        return scratch.view();
+    });
+}
 
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
                         float* const out[3], LrpRasterMethod method)
 {
-    if (method == LrpRasterMethod::automatic) {
-        const double step = grid.width > 1 ? (grid.x[grid.width - 1] - grid.x[0]) / (grid.width - 1) : 1.0;
-        method = noise.lattice().spacing[0] < lrp_lattice_row_spacing * step ? LrpRasterMethod::lattice_rows
-                                                                               : LrpRasterMethod::separable;
+    if (method == LrpRasterMethod::automatic)
+        method = lrp_raster_prefers_lattice_rows(noise, grid) ? LrpRasterMethod::lattice_rows : LrpRasterMethod::separable;
+    if (method == LrpRasterMethod::lattice_rows) {
+        const GridWindows needed(noise.lattice(), grid);
+        if (needed.i_begin >= terms.i_begin() && needed.i_end <= terms.i_end() && needed.j_begin >= terms.j_begin() &&
+            needed.j_end <= terms.j_end())
+            return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out,
+                                      [&](std::int64_t i, std::int64_t j) { return terms.at(i, j); });
     }
-    if (method == LrpRasterMethod::lattice_rows && lattice_row_raster(noise, terms, grid, out)) return;
     Scratch& s = scratch();
     const LrpLattice& lattice = noise.lattice();
     const std::size_t row_stride = round_up(std::size_t(grid.width), lrp_raster::padding) + lrp_raster::padding;

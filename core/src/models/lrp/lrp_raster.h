@@ -45,6 +45,15 @@ enum class LrpRasterMethod {
 /// Lattice spacings, in grid columns, below which `automatic` takes the lattice-row raster.
 constexpr double lrp_lattice_row_spacing = 16;
 
+/// Whether `automatic` takes the lattice-row raster for this stratum on this grid.
+bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid);
+
+/// lrp_raster_stratum by the lattice-row raster, drawing the terms itself a lattice row at a time
+/// (no LrpTermCache of the region: for windows of a few pixels the cache's copy of every
+/// window's terms, several MB a region, cost more than drawing).
+void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
+                              float* const out[3]);
+
 /// out[c][r · width + k] = noise.eval(x[k], y[r], filter)'s channel c, bit for bit, where `terms`
 /// holds the lattice points' terms under `filter` for every lattice point whose window reaches
 /// the grid. Buffers: one per-thread scratch, grown once (no allocation per call after that).

@@ -224,12 +224,12 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
 {
     const auto zero = hn::Zero(d);
     const LaneWindows<D> windows(d, row.window + k);
-    const std::size_t terms = std::size_t(row.terms);
     hn::Vec<D> sum[3] = {zero, zero, zero};
     auto weight = zero, weight_squared = zero;
     for (int dj = 0; dj < 3; ++dj) {
         if (!row.reaches[dj]) continue;
         const auto ry2 = hn::Set(d, row.ry2[dj]);
+        const std::size_t terms = std::size_t(row.terms[dj]);
         for (int dix = 0; dix < 3; ++dix) {
             const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + std::size_t(dix) * row.stride + k), ry2);
             if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
@@ -245,7 +245,7 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
                 const auto ca = hn::LoadU(d, row.cosine[dj] + column);
                 const auto sa = hn::LoadU(d, row.sine[dj] + column);
                 for (std::size_t c = 0; c < 3; ++c) {
-                    const std::size_t factor = c * row.plane + t * row.windows;
+                    const std::size_t factor = c * row.plane[dj] + t * row.windows;
                     local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, expand(row.p[dj] + factor)),
                                                          hn::Mul(sa, expand(row.q[dj] + factor))));
                 }

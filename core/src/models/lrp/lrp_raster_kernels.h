@@ -67,13 +67,14 @@ void gathered_sincos(const float* a, const std::int32_t* index, std::int32_t off
 /// and in each the windows window[k] + dix − 1 (dix = 0, 1, 2), in that order (sum_windows').
 /// Per lattice row dj: whether its windows reach the pixel row at all (ry2 < 2.25), ry2, the
 /// column tables cosine[dj], sine[dj] at [(dix · terms + t) · stride + k], and the row factors
-/// p[dj], q[dj] of window w's term t in channel c at [c · plane + t · windows + w]. rx2 of slot
+/// p[dj], q[dj] of window w's term t in channel c at [c · plane[dj] + t · windows + w] (terms[dj]
+/// of them, zero past a window's own). rx2 of slot
 /// dix at [dix · stride + k]. out[c][k] = sum_windows' normalised value, bit for bit. Reads
 /// window, rx2 and the tables up to the padding past `count` (window repeats its last value
 /// there, rx2 holds 4.5) and the factors up to the padding past each window.
 struct PixelRow {
     std::size_t count = 0;
-    int terms = 0;
+    int terms[3] = {0, 0, 0};  ///< per lattice row dj: the most live terms of its windows
     const std::int32_t* window = nullptr;
     const float* rx2 = nullptr;
     std::size_t stride = 0;
@@ -83,7 +84,7 @@ struct PixelRow {
     const float* sine[3] = {nullptr, nullptr, nullptr};
     const float* p[3] = {nullptr, nullptr, nullptr};
     const float* q[3] = {nullptr, nullptr, nullptr};
-    std::size_t plane = 0, windows = 0;
+    std::size_t plane[3] = {0, 0, 0}, windows = 0;
     Normalisation normalisation = Normalisation::variance;
     float* out[3] = {nullptr, nullptr, nullptr};
 };
