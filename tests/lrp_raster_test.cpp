@@ -15,6 +15,7 @@
 #include <hwy/targets.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -25,11 +26,11 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 
 /// A one-stratum noise of σ = 1 per channel (ring spectrum, paper Fig. 10), J cosines.
-LrpStratumNoise ring_noise(int cosines)
+LrpStratumNoise ring_noise(int cosines, const std::array<double, 3>& sigma = {1, 1, 1})
 {
     static const DiscreteSpectrum ring = ring_spectrum(256, 0.125, 0.01);
     LrpStratum stratum = lrp_for_spectrum(ring, cosines, 1).strata.front();
-    stratum.sigma = {1, 1, 1};
+    stratum.sigma = sigma;
     return LrpStratumNoise(stratum, 256, {});
 }
 
@@ -172,6 +173,10 @@ TEST(LrpRaster, EveryInstructionSetGivesTheSameRaster)
         for (double step : {0.8, 3.7, 16.0}) drawn_matches_eval(noise, LrpFilter{}, make_grid(3.3, step, 45, -7.9, step * 1.375, 5));
         // A footprint of 7 px keeps 8–17 of a window's 24 terms: windows of unequal term counts
         // side by side (the lattice-row raster's zero terms).
+        // A stratum of channel 0 only (the turbulence's): the raster sums that channel alone.
+        const LrpStratumNoise first_channel = ring_noise(12, {1, 0, 0});
+        for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+            raster_errors(first_channel, LrpFilter{}, make_grid(3.3, 0.8, 45, -7.9, 1.1, 5), method);
         const LrpStratumNoise wide = ring_noise(24);
         const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(7.0), 1.0);
         for (double step : {0.8, 3.7}) {

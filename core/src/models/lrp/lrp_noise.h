@@ -271,6 +271,9 @@ public:
     /// a stratum of zero amplitude (a channel-less band of the photo), whatever the filter.
     bool survives(const LrpFilter& filter) const;
     double spread() const { return spread_; }
+    /// 1 where channels 1 and 2 have zero amplitude (the structure's turbulence strata: their
+    /// sums there are +0), else 3: what the raster has to sum.
+    int channels() const { return amplitude_[1] == 0 && amplitude_[2] == 0 ? 1 : 3; }
 
 private:
     LrpLattice lattice_;

@@ -320,7 +320,7 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
                 lrp_raster::row_factors(dy, view.fy(), re, im, view.live, s.p.data(), s.q.data());
                 lrp_raster::WindowRow row;
                 row.cosine = s.cosine.data() + c0, row.sine = s.sine.data() + c0, row.stride = columns;
-                row.p = s.p.data(), row.q = s.q.data(), row.terms = view.live;
+                row.p = s.p.data(), row.q = s.q.data(), row.terms = view.live, row.channels = noise.channels();
                 row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 const std::size_t at = std::size_t(r) * row_stride + std::size_t(k0 + c0);
                 for (int c = 0; c < 3; ++c) row.sum[c] = s.sum[c].data() + at;

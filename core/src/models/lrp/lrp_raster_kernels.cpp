@@ -92,7 +92,7 @@ HWY_INLINE hn::Vec<D> WindowWeight(D d, hn::Vec<D> y2)
     return hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
 }
 
-template <class D>
+template <std::size_t Channels, class D>
 HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
 {
     const std::size_t lanes = hn::Lanes(d);
@@ -110,11 +110,11 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
             for (std::size_t term = 0; term < terms; ++term) {
                 const auto ca = hn::LoadU(d, row.cosine + term * row.stride + k);
                 const auto sa = hn::LoadU(d, row.sine + term * row.stride + k);
-                for (std::size_t c = 0; c < 3; ++c)
+                for (std::size_t c = 0; c < Channels; ++c)
                     local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, hn::Set(d, row.p[c * plane + term])),
                                                          hn::Mul(sa, hn::Set(d, row.q[c * plane + term]))));
             }
-            for (int c = 0; c < 3; ++c) {
+            for (std::size_t c = 0; c < Channels; ++c) {
                 const auto sum = hn::LoadU(d, row.sum[c] + k);
                 hn::StoreU(hn::IfThenElse(live, hn::Add(sum, hn::Mul(w, local[c])), sum), d, row.sum[c] + k);
             }
@@ -303,7 +303,12 @@ void SumTermsAt(const LrpTermView& terms, const float* dx, const float* dy, std:
 
 void AccumulateWindowRow(const WindowRow& row)
 {
-    WithWidthFor(row.count, [&](auto d) { AccumulateWindowRowOf(d, row); });
+    WithWidthFor(row.count, [&](auto d) {
+        if (row.channels == 1)
+            AccumulateWindowRowOf<1>(d, row);
+        else
+            AccumulateWindowRowOf<3>(d, row);
+    });
 }
 
 }  // namespace stochtex::lrp_raster::HWY_NAMESPACE

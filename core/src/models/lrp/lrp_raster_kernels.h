@@ -44,6 +44,7 @@ struct WindowRow {
     const float* p = nullptr;
     const float* q = nullptr;
     int terms = 0;  ///< the window's live terms (LrpTermView::live); 0: weights only
+    int channels = 3;  ///< 1: only channel 0 (the others' terms are 0: their sums stay +0)
     const float* rx2 = nullptr;  ///< (dx / spacing)² per pixel; > 2.25 past the window (w = 0)
     float ry2 = 0;
     std::size_t count = 0;
