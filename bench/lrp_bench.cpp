@@ -153,7 +153,8 @@ void bm_region(benchmark::State& state, const Model* model, int rows)
 
 /// One random-phase stratum of a texture over the same raster in 512×64 bands, one thread, with
 /// each method of lrp_raster_stratum: what each stratum costs, and where the lattice-row raster
-/// starts to pay (lrp_lattice_row_spacing). Terms drawn per band, as eval_region does.
+/// starts to pay (lrp_lattice_row_spacing). Terms drawn per band, as eval_region does (the
+/// lattice-row raster draws its own, lrp_raster_stratum_drawn).
 void bm_stratum(benchmark::State& state, const Model* model, std::size_t s, LrpRasterMethod method)
 {
     const TextureDescription& description = model->description;
@@ -177,9 +178,13 @@ void bm_stratum(benchmark::State& state, const Model* model, std::size_t s, LrpR
             const LrpRasterGrid grid{x.data(), raster_size, y.data() + y0, rows};
             const std::int64_t i0 = lattice.nearest(0, x.front()) - 1, i1 = lattice.nearest(0, x.back()) + 1;
             const std::int64_t j0 = lattice.nearest(1, grid.y[0]) - 1, j1 = lattice.nearest(1, grid.y[rows - 1]) + 1;
-            terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
-                       [&](std::int64_t i, std::int64_t j, LrpTerms& t) { noise.draw(i, j, identity, t); });
-            lrp_raster_stratum(noise, terms, grid, channels, method);
+            if (method == LrpRasterMethod::lattice_rows) {
+                lrp_raster_stratum_drawn(noise, identity, grid, channels);  // as eval_region takes it
+            } else {
+                terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
+                           [&](std::int64_t i, std::int64_t j, LrpTerms& t) { noise.draw(i, j, identity, t); });
+                lrp_raster_stratum(noise, terms, grid, channels, method);
+            }
             benchmark::DoNotOptimize(out[0].data());
         }
     const double pixels = double(state.iterations()) * raster_size * raster_size;

@@ -67,12 +67,29 @@ void reset(std::vector<float>& buffer, std::size_t size)
     std::fill(buffer.begin(), buffer.begin() + std::ptrdiff_t(size), 0.0f);
 }
 
+/// The number of positions (increasing) below `value`, or with `or_equal` not above it
+/// (std::lower_bound / std::upper_bound's index). Found from the first and last position as if
+/// evenly spaced (a raster's are), then stepped to the exact index: a step or none on a raster,
+/// where the binary search that this replaced cost ~6 % of a stratum in mispredicted branches.
+template <bool or_equal>
+int count_below(const double* position, int count, double value)
+{
+    const auto below = [value](double p) { return or_equal ? !(value < p) : p < value; };
+    if (count == 0 || !below(position[0])) return 0;
+    if (below(position[count - 1])) return count;
+    const double step = count > 1 ? (position[count - 1] - position[0]) / (count - 1) : 1.0;
+    int k = std::clamp(int((value - position[0]) / step), 0, count - 1);  // a guess; exactness below
+    while (k > 0 && !below(position[k - 1])) --k;
+    while (k < count && below(position[k])) ++k;
+    return k;
+}
+
 /// [begin, end) of the positions within (centre − reach, centre + reach).
 std::pair<int, int> within(const double* position, int count, double centre, double reach)
 {
-    const double* begin = std::upper_bound(position, position + count, centre - reach);
-    const double* end = std::lower_bound(begin, position + count, centre + reach);
-    return {int(begin - position), int(end - position)};
+    const int begin = count_below<true>(position, count, centre - reach);
+    const int end = begin + count_below<false>(position + begin, count - begin, centre + reach);
+    return {begin, end};
 }
 
 lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
@@ -87,7 +104,7 @@ lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
 /// the next call), for i in [i_begin, i_end) — every pixel's 3×3 windows (the caller checks).
 template <class ViewOf>
 void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std::int64_t i_end, const LrpRasterGrid& grid,
-                        float* const out[3], const ViewOf& view_of)
+                        float* const out[3], bool add, const ViewOf& view_of)
 {
     const LrpLattice& lattice = noise.lattice();
     const std::size_t width = std::size_t(grid.width);
@@ -168,7 +185,7 @@ void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std:
 
     lrp_raster::PixelRow row;
     row.count = width, row.window = s.window.data(), row.rx2 = s.rx2.data(), row.stride = stride, row.windows = windows;
-    row.normalisation = kernel_normalisation(noise.normalisation());
+    row.normalisation = kernel_normalisation(noise.normalisation()), row.add = add;
     for (int r = 0; r < grid.height; ++r) {
         const std::int64_t cy = lattice.nearest(1, grid.y[r]);
         for (int dj = 0; dj < 3; ++dj) {
@@ -216,11 +233,11 @@ bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRast
 }
 
 void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
-                              float* const out[3])
+                              float* const out[3], bool add)
 {
     const GridWindows needed(noise.lattice(), grid);
     thread_local LrpTerms scratch;
-    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, [&](std::int64_t i, std::int64_t j) {
+    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add, [&](std::int64_t i, std::int64_t j) {
         scratch.count = 0;
         noise.draw(i, j, filter, scratch);
         return scratch.view();
@@ -228,7 +245,7 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
 }
 
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
-                        float* const out[3], LrpRasterMethod method)
+                        float* const out[3], LrpRasterMethod method, bool add)
 {
     if (method == LrpRasterMethod::automatic)
         method = lrp_raster_prefers_lattice_rows(noise, grid) ? LrpRasterMethod::lattice_rows : LrpRasterMethod::separable;
@@ -236,7 +253,7 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
         const GridWindows needed(noise.lattice(), grid);
         if (needed.i_begin >= terms.i_begin() && needed.i_end <= terms.i_end() && needed.j_begin >= terms.j_begin() &&
             needed.j_end <= terms.j_end())
-            return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out,
+            return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,
                                       [&](std::int64_t i, std::int64_t j) { return terms.at(i, j); });
     }
     Scratch& s = scratch();
@@ -331,7 +348,7 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
     }
     const float* const sums[3] = {s.sum[0].data(), s.sum[1].data(), s.sum[2].data()};
     lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
-                          kernel_normalisation(noise.normalisation()), out);
+                          kernel_normalisation(noise.normalisation()), add, out);
 }
 
 }  // namespace stochtex

@@ -52,12 +52,13 @@ bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRast
 /// (no LrpTermCache of the region: for windows of a few pixels the cache's copy of every
 /// window's terms, several MB a region, cost more than drawing).
 void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
-                              float* const out[3]);
+                              float* const out[3], bool add = false);
 
 /// out[c][r · width + k] = noise.eval(x[k], y[r], filter)'s channel c, bit for bit, where `terms`
 /// holds the lattice points' terms under `filter` for every lattice point whose window reaches
-/// the grid. Buffers: one per-thread scratch, grown once (no allocation per call after that).
+/// the grid; with `add`, out[c][…] + that value instead (eval_region's sum over strata, without
+/// a pass of its own). Buffers: one per-thread scratch, grown once (no allocation per call after that).
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
-                        float* const out[3], LrpRasterMethod method = LrpRasterMethod::automatic);
+                        float* const out[3], LrpRasterMethod method = LrpRasterMethod::automatic, bool add = false);
 
 }  // namespace stochtex

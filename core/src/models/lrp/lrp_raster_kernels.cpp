@@ -126,11 +126,12 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
     }
 }
 
-/// sum_windows' last step: out[c][at…] = sum[c] · scale, scale = 1/√weight_squared, 1/weight
-/// or 1, for the first `left` lanes.
+/// sum_windows' last step, value = sum[c] · scale with scale = 1/√weight_squared, 1/weight or 1,
+/// for the first `left` lanes: out[c][at…] = value, or with `add` out[c][at…] + value (the sum
+/// over strata eval_region makes, in its order).
 template <class D>
 HWY_INLINE void StoreNormalised(D d, const hn::Vec<D> sum[3], hn::Vec<D> weight, hn::Vec<D> weight_squared,
-                                Normalisation normalisation, std::size_t left, float* const out[3], std::size_t at)
+                                Normalisation normalisation, bool add, std::size_t left, float* const out[3], std::size_t at)
 {
     const auto one = hn::Set(d, 1.0f);
     const auto scale = normalisation == Normalisation::variance    ? hn::Div(one, hn::Sqrt(weight_squared))
@@ -138,15 +139,19 @@ HWY_INLINE void StoreNormalised(D d, const hn::Vec<D> sum[3], hn::Vec<D> weight,
                                                                    : one;
     for (int c = 0; c < 3; ++c) {
         const auto value = hn::Mul(sum[c], scale);
-        if (left >= hn::Lanes(d))
-            hn::StoreU(value, d, out[c] + at);
-        else
-            hn::BlendedStore(value, hn::FirstN(d, left), d, out[c] + at);
+        if (left >= hn::Lanes(d)) {
+            hn::StoreU(add ? hn::Add(hn::LoadU(d, out[c] + at), value) : value, d, out[c] + at);
+        } else {
+            // The row's last lanes: no vector load past its end (it may be the buffer's).
+            float lanes[hn::MaxLanes(D())];
+            hn::StoreU(value, d, lanes);
+            for (std::size_t i = 0; i < left; ++i) out[c][at + i] = add ? out[c][at + i] + lanes[i] : lanes[i];
+        }
     }
 }
 
 void Normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
-               std::size_t width, int rows, Normalisation normalisation, float* const out[3])
+               std::size_t width, int rows, Normalisation normalisation, bool add, float* const out[3])
 {
     const hn::ScalableTag<float> d;
     const std::size_t lanes = hn::Lanes(d);
@@ -155,7 +160,7 @@ void Normalise(const float* const sum[3], const float* weight, const float* weig
             const std::size_t at = r * stride + k;
             const hn::Vec<decltype(d)> sums[3] = {hn::LoadU(d, sum[0] + at), hn::LoadU(d, sum[1] + at),
                                                   hn::LoadU(d, sum[2] + at)};
-            StoreNormalised(d, sums, hn::LoadU(d, weight + at), hn::LoadU(d, weight_squared + at), normalisation,
+            StoreNormalised(d, sums, hn::LoadU(d, weight + at), hn::LoadU(d, weight_squared + at), normalisation, add,
                             width - k, out, r * width + k);
         }
 }
@@ -256,7 +261,7 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
             weight_squared = hn::IfThenElse(live, hn::Add(weight_squared, hn::Mul(w, w)), weight_squared);
         }
     }
-    StoreNormalised(d, sum, weight, weight_squared, row.normalisation, row.count - k, row.out, k);
+    StoreNormalised(d, sum, weight, weight_squared, row.normalisation, row.add, row.count - k, row.out, k);
 }
 
 void AccumulatePixelRow(const PixelRow& row)
@@ -358,9 +363,9 @@ void accumulate_pixel_row(const PixelRow& row)
 }
 
 void normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
-               std::size_t width, int rows, Normalisation normalisation, float* const out[3])
+               std::size_t width, int rows, Normalisation normalisation, bool add, float* const out[3])
 {
-    HWY_DYNAMIC_DISPATCH(Normalise)(sum, weight, weight_squared, stride, width, rows, normalisation, out);
+    HWY_DYNAMIC_DISPATCH(Normalise)(sum, weight, weight_squared, stride, width, rows, normalisation, add, out);
 }
 
 }  // namespace stochtex::lrp_raster

@@ -87,15 +87,16 @@ struct PixelRow {
     const float* q[3] = {nullptr, nullptr, nullptr};
     std::size_t plane[3] = {0, 0, 0}, windows = 0;
     Normalisation normalisation = Normalisation::variance;
+    bool add = false;  ///< out[c][k] + value instead of value
     float* out[3] = {nullptr, nullptr, nullptr};
 };
 void accumulate_pixel_row(const PixelRow& row);
 
 /// sum_windows' normalisation of `rows` rows of `width` sums: out[c][r · width + k] =
-/// sum[c][r · stride + k] · scale, scale = 1/√weight_squared, 1/weight or 1. Reads up to the
-/// padding past each row.
+/// sum[c][r · stride + k] · scale, scale = 1/√weight_squared, 1/weight or 1 (with `add`, out +
+/// that). Reads the sums up to the padding past each row.
 void normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
-               std::size_t width, int rows, Normalisation normalisation, float* const out[3]);
+               std::size_t width, int rows, Normalisation normalisation, bool add, float* const out[3]);
 
 /// sum_terms (the direct form: sin/cos of fx·dx + fy·dy, four partial sums t mod 4) at each of
 /// `count` points (dx[k], dy[k]) of one set of terms: out[c][k]. Reads and writes up to the

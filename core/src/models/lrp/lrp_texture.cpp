@@ -176,22 +176,23 @@ RegionScratch& region_scratch()
 /// `stratum` under `filter` at every pixel of the grid into out[c][pixel]: where the terms can be
 /// drawn once for the region, the lattice-row raster drawing its own (windows of a few pixels) or
 /// the separable raster over the region's term cache; else eval() per pixel (identical values).
+/// With `add`, out[c][pixel] + the value (the strata's sum, in eval()'s order).
 void stratum_values(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpRasterGrid& grid,
-                    float* const out[3])
+                    float* const out[3], bool add)
 {
     const double x_ends[2] = {grid.x[0], grid.x[grid.width - 1]};
     const double y_ends[2] = {grid.y[0], grid.y[grid.height - 1]};
     const std::size_t pixels = std::size_t(grid.width) * std::size_t(grid.height);
     if (RegionTerms::pays(stratum, x_ends, y_ends, pixels) && lrp_raster_prefers_lattice_rows(stratum, grid))
-        return lrp_raster_stratum_drawn(stratum, filter, grid, out);
+        return lrp_raster_stratum_drawn(stratum, filter, grid, out, add);
     const RegionTerms region(stratum, filter, x_ends, y_ends, pixels);
-    if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out, LrpRasterMethod::separable);
+    if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out, LrpRasterMethod::separable, add);
     for (int r = 0; r < grid.height; ++r)
         for (int k = 0; k < grid.width; ++k) {
             float value[3];
             stratum.eval(grid.x[k], grid.y[r], filter, value);
             const std::size_t pixel = std::size_t(r) * std::size_t(grid.width) + std::size_t(k);
-            for (int c = 0; c < 3; ++c) out[c][pixel] = value[c];
+            for (int c = 0; c < 3; ++c) out[c][pixel] = add ? out[c][pixel] + value[c] : value[c];
         }
 }
 
@@ -220,19 +221,16 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
         s.value[c].resize(pixels);
     }
     float* const value[3] = {s.value[0].data(), s.value[1].data(), s.value[2].data()};
-    for (const LrpStratumNoise& stratum : strata_) {
-        if (!stratum.survives(filter)) continue;
-        stratum_values(stratum, filter, grid, value);
-        for (int c = 0; c < 3; ++c)
-            for (std::size_t p = 0; p < pixels; ++p) s.m[c][p] += value[c][p];
-    }
+    float* const m[3] = {s.m[0].data(), s.m[1].data(), s.m[2].data()};
+    for (const LrpStratumNoise& stratum : strata_)
+        if (stratum.survives(filter)) stratum_values(stratum, filter, grid, m, true);  // m += the stratum
 
     if (structure_) {
         // The turbulence strata are unfiltered strata on the same grid; the blocks are drawn once.
         for (int component = 0; component < 2; ++component) {
             const std::vector<LrpStratumNoise>& turbulence = structure_->turbulence_strata(component);
             for (std::size_t k = 0; k < turbulence.size(); ++k) {
-                stratum_values(turbulence[k], LrpFilter{}, grid, value);
+                stratum_values(turbulence[k], LrpFilter{}, grid, value, false);
                 s.turbulence[component][k].assign(s.value[0].begin(), s.value[0].begin() + std::ptrdiff_t(pixels));
             }
         }
