@@ -168,7 +168,8 @@ void LrpStratumNoise::draw(std::int64_t i, std::int64_t j, const LrpFilter& filt
             fx = std::round(fx * period_[0]) / period_[0];
             fy = std::round(fy * period_[1]) / period_[1];
         }
-        const float response = filter.response(fx, fy, spread_);
+        // (response() is 1 without a filter: not called then, once per term of every window.)
+        const float response = filter.identity ? 1.0f : filter.response(fx, fy, spread_);
         if (!(response > 0)) continue;
         float re[3], im[3];
         for (int c = 0; c < 3; ++c) {

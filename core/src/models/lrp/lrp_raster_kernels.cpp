@@ -92,6 +92,10 @@ HWY_INLINE hn::Vec<D> WindowWeight(D d, hn::Vec<D> y2)
     return hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
 }
 
+// Where w = 0 (outside the window, or not among a pixel's 3×3), sum_windows skips the window;
+// the kernels add w · local, w and w · w anyway, without a select: each is ±0 there (w ≥ 0: the
+// table's values are, and so is their interpolation, rounding included), and a sum that starts
+// at +0 and only ever has values added is never −0, so adding ±0 leaves its bits as they are.
 template <std::size_t Channels, class D>
 HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
 {
@@ -103,7 +107,6 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
         const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + k), ry2);
         if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
         const auto w = WindowWeight(d, y2);
-        const auto live = hn::Gt(w, zero);
         if (terms > 0) {
             // sum_terms_separable: one running sum per channel, term after term.
             hn::Vec<D> local[3] = {zero, zero, zero};
@@ -116,13 +119,13 @@ HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
             }
             for (std::size_t c = 0; c < Channels; ++c) {
                 const auto sum = hn::LoadU(d, row.sum[c] + k);
-                hn::StoreU(hn::IfThenElse(live, hn::Add(sum, hn::Mul(w, local[c])), sum), d, row.sum[c] + k);
+                hn::StoreU(hn::Add(sum, hn::Mul(w, local[c])), d, row.sum[c] + k);
             }
         }
         const auto weight = hn::LoadU(d, row.weight + k);
-        hn::StoreU(hn::IfThenElse(live, hn::Add(weight, w), weight), d, row.weight + k);
+        hn::StoreU(hn::Add(weight, w), d, row.weight + k);
         const auto squared = hn::LoadU(d, row.weight_squared + k);
-        hn::StoreU(hn::IfThenElse(live, hn::Add(squared, hn::Mul(w, w)), squared), d, row.weight_squared + k);
+        hn::StoreU(hn::Add(squared, hn::Mul(w, w)), d, row.weight_squared + k);
     }
 }
 
@@ -239,7 +242,6 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
             const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + std::size_t(dix) * row.stride + k), ry2);
             if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
             const auto w = WindowWeight(d, y2);
-            const auto live = hn::Gt(w, zero);
             // Slot dix's window of each lane is window + dix − 1.
             const auto expand = [&](const float* factors) { return windows.template of<Permute>(d, factors, dix - 1); };
             // sum_terms_separable's running sums, the window's zero terms past its live ones
@@ -255,10 +257,11 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
                                                          hn::Mul(sa, expand(row.q[dj] + factor))));
                 }
             }
-            // sum_windows: a window of no live terms adds w · 0 (the same: sum is never −0).
-            for (int c = 0; c < 3; ++c) sum[c] = hn::IfThenElse(live, hn::Add(sum[c], hn::Mul(w, local[c])), sum[c]);
-            weight = hn::IfThenElse(live, hn::Add(weight, w), weight);
-            weight_squared = hn::IfThenElse(live, hn::Add(weight_squared, hn::Mul(w, w)), weight_squared);
+            // sum_windows: a window of no live terms adds w · 0 (the same: sum is never −0), and
+            // lanes of w = 0 add ±0 (see AccumulateWindowRowOf).
+            for (int c = 0; c < 3; ++c) sum[c] = hn::Add(sum[c], hn::Mul(w, local[c]));
+            weight = hn::Add(weight, w);
+            weight_squared = hn::Add(weight_squared, hn::Mul(w, w));
         }
     }
     StoreNormalised(d, sum, weight, weight_squared, row.normalisation, row.add, row.count - k, row.out, k);
