@@ -21,8 +21,10 @@
 #include "models/gabor/gabor_noise.h"
 #include "models/lrp/lrp_fit.h"
 #include "models/lrp/lrp_noise.h"
+#include "models/lrp/lrp_raster.h"
 #include "models/lrp/lrp_texture.h"
 #include "models/lrp/lrp_window.h"
+#include "numerics/random.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
@@ -147,6 +149,49 @@ void bm_region(benchmark::State& state, const Model* model, int rows)
     state.counters["Mpix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsRate);
     state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
     state.SetLabel("eval_region in 512x" + std::to_string(rows) + " bands, 1 thread, filtered, full colour");
+}
+
+/// One random-phase stratum of a texture over the same raster in 512×64 bands, one thread, with
+/// each method of lrp_raster_stratum: what each stratum costs, and where the lattice-row raster
+/// starts to pay (lrp_lattice_row_spacing). Terms drawn per band, as eval_region does (the
+/// lattice-row raster draws its own, lrp_raster_stratum_drawn).
+void bm_stratum(benchmark::State& state, const Model* model, std::size_t s, LrpRasterMethod method)
+{
+    const TextureDescription& description = model->description;
+    const LrpParameters& lrp = description.parameters.get<LrpParameters>();
+    LrpStratumNoise::Options options;
+    options.seed = mix_seed(description.seed, s, 0x1e9);
+    const LrpStratumNoise noise(lrp.strata[s], lrp.spectrum_size, options);
+    constexpr int rows = 64;
+    std::vector<double> x(raster_size), y(raster_size);
+    for (int k = 0; k < raster_size; ++k) x[std::size_t(k)] = 0.25 * description.pixels_per_unit + k + 0.5;
+    for (int k = 0; k < raster_size; ++k) y[std::size_t(k)] = 0.5 * description.pixels_per_unit + k + 0.5;
+    std::vector<float> out[3];
+    for (auto& channel : out) channel.resize(std::size_t(raster_size) * rows);
+    float* const channels[3] = {out[0].data(), out[1].data(), out[2].data()};
+    const LrpLattice& lattice = noise.lattice();
+    const LrpFilter identity;
+    LrpTermCache terms;
+    const double cpu_start = process_cpu_seconds();
+    for (auto _ : state)
+        for (int y0 = 0; y0 < raster_size; y0 += rows) {
+            const LrpRasterGrid grid{x.data(), raster_size, y.data() + y0, rows};
+            const std::int64_t i0 = lattice.nearest(0, x.front()) - 1, i1 = lattice.nearest(0, x.back()) + 1;
+            const std::int64_t j0 = lattice.nearest(1, grid.y[0]) - 1, j1 = lattice.nearest(1, grid.y[rows - 1]) + 1;
+            if (method == LrpRasterMethod::lattice_rows) {
+                lrp_raster_stratum_drawn(noise, identity, grid, channels);  // as eval_region takes it
+            } else {
+                terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
+                           [&](std::int64_t i, std::int64_t j, LrpTerms& t) { noise.draw(i, j, identity, t); });
+                lrp_raster_stratum(noise, terms, grid, channels, method);
+            }
+            benchmark::DoNotOptimize(out[0].data());
+        }
+    const double pixels = double(state.iterations()) * raster_size * raster_size;
+    state.counters["cpu_ns/px"] = benchmark::Counter(1e9 * (process_cpu_seconds() - cpu_start) / pixels);
+    char label[96];
+    std::snprintf(label, sizeof label, "spacing %.1f px, %d cosines", noise.lattice().spacing[0], noise.term_count());
+    state.SetLabel(label);
 }
 
 // ---- The paper's Fig. 10 comparison --------------------------------------------------------
@@ -309,6 +354,15 @@ int main(int argc, char** argv)
                                              &model, rows)
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime();
+    for (const Model& model : models)
+        if (model.name == "lrp/J:50,L:8,r:0.1")
+            for (std::size_t s = 0; s < model.description.parameters.get<LrpParameters>().strata.size(); ++s)
+                for (const auto& [method, name] : {std::pair{LrpRasterMethod::separable, "separable"},
+                                                   std::pair{LrpRasterMethod::lattice_rows, "lattice_rows"}})
+                    benchmark::RegisterBenchmark(("Stratum/" + model.name + "/s:" + std::to_string(s) + "/" + name).c_str(),
+                                                 bm_stratum, &model, s, method)
+                        ->Unit(benchmark::kMillisecond)
+                        ->UseRealTime();
     ComparisonReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::Shutdown();

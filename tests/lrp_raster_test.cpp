@@ -15,6 +15,7 @@
 #include <hwy/targets.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -25,11 +26,11 @@ namespace {
 constexpr double pi = 3.14159265358979323846;
 
 /// A one-stratum noise of σ = 1 per channel (ring spectrum, paper Fig. 10), J cosines.
-LrpStratumNoise ring_noise(int cosines)
+LrpStratumNoise ring_noise(int cosines, const std::array<double, 3>& sigma = {1, 1, 1})
 {
     static const DiscreteSpectrum ring = ring_spectrum(256, 0.125, 0.01);
     LrpStratum stratum = lrp_for_spectrum(ring, cosines, 1).strata.front();
-    stratum.sigma = {1, 1, 1};
+    stratum.sigma = sigma;
     return LrpStratumNoise(stratum, 256, {});
 }
 
@@ -72,7 +73,8 @@ Grid make_grid(double x0, double dx, int width, double y0, double dy, int height
 
 /// Runs the raster over `grid`; checks every value against eval() (bit for bit) and returns the
 /// per-pixel error against the double reference, in σ (= 1), channel by channel.
-std::vector<double> raster_errors(const LrpStratumNoise& noise, const LrpFilter& filter, const Grid& grid)
+std::vector<double> raster_errors(const LrpStratumNoise& noise, const LrpFilter& filter, const Grid& grid,
+                                  LrpRasterMethod method = LrpRasterMethod::automatic)
 {
     const std::size_t pixels = grid.x.size() * grid.y.size();
     std::vector<float> out[3];
@@ -84,7 +86,7 @@ std::vector<double> raster_errors(const LrpStratumNoise& noise, const LrpFilter&
     const std::int64_t j0 = lattice.nearest(1, grid.y.front()) - 1, j1 = lattice.nearest(1, grid.y.back()) + 1;
     terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
                [&](std::int64_t i, std::int64_t j, LrpTerms& t) { noise.draw(i, j, filter, t); });
-    lrp_raster_stratum(noise, terms, grid.view(), channels);
+    lrp_raster_stratum(noise, terms, grid.view(), channels, method);
     std::vector<double> errors;
     for (std::size_t r = 0; r < grid.y.size(); ++r)
         for (std::size_t k = 0; k < grid.x.size(); ++k) {
@@ -99,6 +101,23 @@ std::vector<double> raster_errors(const LrpStratumNoise& noise, const LrpFilter&
             }
         }
     return errors;
+}
+
+/// lrp_raster_stratum_drawn (the lattice-row raster drawing its own terms) against eval(), bit for bit.
+void drawn_matches_eval(const LrpStratumNoise& noise, const LrpFilter& filter, const Grid& grid)
+{
+    const std::size_t pixels = grid.x.size() * grid.y.size();
+    std::vector<float> out[3];
+    for (auto& channel : out) channel.resize(pixels);
+    float* const channels[3] = {out[0].data(), out[1].data(), out[2].data()};
+    lrp_raster_stratum_drawn(noise, filter, grid.view(), channels);
+    for (std::size_t r = 0; r < grid.y.size(); ++r)
+        for (std::size_t k = 0; k < grid.x.size(); ++k) {
+            float point[3];
+            noise.eval(grid.x[k], grid.y[r], filter, point);
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(out[c][r * grid.x.size() + k], point[c]) << "drawn, pixel " << k << ", " << r << " channel " << c;
+        }
 }
 
 double max_abs(const std::vector<double>& e, std::size_t begin, std::size_t end)
@@ -142,12 +161,30 @@ TEST(LrpRaster, SimdSineCosineIsTheScalarOneBitForBit)
 TEST(LrpRaster, EveryInstructionSetGivesTheSameRaster)
 {
     // Determinism across machines: the raster on each target Highway compiled equals eval().
+    // Both methods; steps of 0.8, 3.7 and 16 exemplar px (spacing 10.8: at 16 a vector spans
+    // more windows than lanes, and the lattice-row raster gathers instead of permuting).
     const LrpStratumNoise noise = ring_noise(12);
-    const Grid grid = make_grid(3.3, 0.8, 45, -7.9, 1.1, 5);
     for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
         hwy::SetSupportedTargetsForTest(target);
         SCOPED_TRACE(hwy::TargetName(target));
-        raster_errors(noise, LrpFilter{}, grid);
+        for (double step : {0.8, 3.7, 16.0})
+            for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+                raster_errors(noise, LrpFilter{}, make_grid(3.3, step, 45, -7.9, step * 1.375, 5), method);
+        for (double step : {0.8, 3.7, 16.0}) drawn_matches_eval(noise, LrpFilter{}, make_grid(3.3, step, 45, -7.9, step * 1.375, 5));
+        // A footprint of 7 px keeps 8–17 of a window's 24 terms: windows of unequal term counts
+        // side by side (the lattice-row raster's zero terms).
+        // A stratum of channel 0 only (the turbulence's): the raster sums that channel alone.
+        const LrpStratumNoise first_channel = ring_noise(12, {1, 0, 0});
+        for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+            raster_errors(first_channel, LrpFilter{}, make_grid(3.3, 0.8, 45, -7.9, 1.1, 5), method);
+        const LrpStratumNoise wide = ring_noise(24);
+        const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(7.0), 1.0);
+        for (double step : {0.8, 3.7}) {
+            const Grid grid = make_grid(-40.2, step, 51, 12.9, step, 7);
+            for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+                raster_errors(wide, filter, grid, method);
+            drawn_matches_eval(wide, filter, grid);
+        }
     }
     hwy::SetSupportedTargetsForTest(0);
 }
@@ -158,17 +195,21 @@ TEST(LrpRaster, MatchesThePointPathAndTheDoublePathWithinStatedTolerance)
     // minified steps: eval() bit for bit; the double path within max 1e-5 σ, RMS 2e-6 σ
     // (measured 3.4e-6 and 6e-7: docs/models/lrp.md, "Precision").
     const LrpStratumNoise noise = ring_noise(24);
-    for (double step : {0.37, 1.0, 2.3})
-        for (double footprint : {0.0, 2.0}) {
-            const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(footprint), 1.0);
-            const Grid grid = make_grid(-101.3, step, 67, 55.1, step * 0.9, 9);
-            const std::vector<double> errors = raster_errors(noise, filter, grid);
-            const double max = max_abs(errors, 0, errors.size()), r = rms(errors);
-            std::printf("step %.2f px, footprint %.0f px: max %.2e sigma, RMS %.2e sigma over %zu values\n", step, footprint,
-                        max, r, errors.size());
-            EXPECT_LT(max, 1e-5) << "step " << step;
-            EXPECT_LT(r, 2e-6) << "step " << step;
-        }
+    for (const LrpRasterMethod method : {LrpRasterMethod::separable, LrpRasterMethod::lattice_rows})
+        for (double step : {0.37, 1.0, 2.3})
+            for (double footprint : {0.0, 2.0}) {
+                const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(footprint), 1.0);
+                const Grid grid = make_grid(-101.3, step, 67, 55.1, step * 0.9, 9);
+                const std::vector<double> errors = raster_errors(noise, filter, grid, method);
+                // Filtered windows keep different numbers of terms: the drawn form's per-row counts.
+                drawn_matches_eval(noise, filter, grid);
+                const double max = max_abs(errors, 0, errors.size()), r = rms(errors);
+                std::printf("%s, step %.2f px, footprint %.0f px: max %.2e sigma, RMS %.2e sigma over %zu values\n",
+                            method == LrpRasterMethod::separable ? "separable" : "lattice rows", step, footprint, max, r,
+                            errors.size());
+                EXPECT_LT(max, 1e-5) << "step " << step;
+                EXPECT_LT(r, 2e-6) << "step " << step;
+            }
 }
 
 TEST(LrpRaster, LongRowFarFromTheOriginDoesNotDrift)

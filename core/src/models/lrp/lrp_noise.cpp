@@ -37,14 +37,6 @@ float LrpFilter::response(double fx, double fy, double spread) const
     return g <= response_floor ? 0.0f : float((g - response_floor) / (1 - response_floor));
 }
 
-void LrpTerms::push(float fx_, float fy_, const float re_[3], const float im_[3])
-{
-    fx()[count] = fx_;
-    fy()[count] = fy_;
-    for (int c = 0; c < 3; ++c) re(c)[count] = re_[c], im(c)[count] = im_[c];
-    live = ++count;
-}
-
 void LrpTerms::pad()
 {
     const float zero[3] = {0, 0, 0};
@@ -176,7 +168,8 @@ void LrpStratumNoise::draw(std::int64_t i, std::int64_t j, const LrpFilter& filt
             fx = std::round(fx * period_[0]) / period_[0];
             fy = std::round(fy * period_[1]) / period_[1];
         }
-        const float response = filter.response(fx, fy, spread_);
+        // (response() is 1 without a filter: not called then, once per term of every window.)
+        const float response = filter.identity ? 1.0f : filter.response(fx, fy, spread_);
         if (!(response > 0)) continue;
         float re[3], im[3];
         for (int c = 0; c < 3; ++c) {

@@ -31,6 +31,7 @@
 // drawn frequency snaps to the nearest multiple of 1/period.
 #pragma once
 
+#include "numerics/exact_rounding.h"
 #include "raster/footprint_filter.h"
 #include "models/lrp/lrp_window.h"
 
@@ -38,8 +39,10 @@
 #include <stochtex/texture_description.h>
 #include <stochtex/models/lrp_parameters.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace stochtex {
@@ -83,7 +86,14 @@ struct LrpTerms {
     float* fy() { return data + capacity; }
     float* re(int c) { return data + (2 + c) * capacity; }
     float* im(int c) { return data + (5 + c) * capacity; }
-    void push(float fx_, float fy_, const float re_[3], const float im_[3]);
+    void push(float fx_, float fy_, const float re_[3], const float im_[3])
+    {
+        // Inline: draw() pushes a term per cosine of every window (a call each was ~3 % of a render).
+        fx()[count] = fx_;
+        fy()[count] = fy_;
+        for (int c = 0; c < 3; ++c) re(c)[count] = re_[c], im(c)[count] = im_[c];
+        live = ++count;
+    }
     /// Pads with zero terms to a multiple of `lanes`.
     void pad();
     LrpTermView view() const { return {data, count, capacity, live}; }
@@ -117,7 +127,8 @@ struct LrpLattice {
     LrpLattice(double spacing_x, double spacing_y, double origin_x = 0, double origin_y = 0);
     std::int64_t nearest(int axis, double position) const
     {
-        return std::int64_t(std::floor((position - origin[axis]) / spacing[axis] + 0.5));
+        // floor_exact: std::floor is a libm call on the x86-64 baseline, and this runs per sample.
+        return std::int64_t(floor_exact((position - origin[axis]) / spacing[axis] + 0.5));
     }
     /// The lattice index modulo the period (the index itself when not periodic).
     std::int64_t wrapped(int axis, std::int64_t i) const
@@ -183,24 +194,36 @@ public:
     void fill(std::int64_t i0, std::int64_t j0, int nx, int ny, const Draw& draw)
     {
         i0_ = i0, j0_ = j0, nx_ = nx, ny_ = ny;
-        data_.clear();
-        offset_.assign(std::size_t(nx) * ny, 0);
-        count_.assign(std::size_t(nx) * ny, 0);
-        live_.assign(std::size_t(nx) * ny, 0);
+        const std::size_t points = std::size_t(nx) * std::size_t(ny);
+        offset_.resize(points);
+        count_.resize(points);
+        live_.resize(points);
+        // data_ only grows (a thread's cache serves region after region): no zero-fill per window,
+        // and each plane copied in whole vectors of LrpTerms::lanes (pad() makes count a multiple;
+        // a memmove call per plane of a few terms cost more than the copy).
+        std::size_t used = 0;
         LrpTerms scratch;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 scratch.count = 0;
                 draw(i0 + i, j0 + j, scratch);
-                const std::size_t k = std::size_t(j) * nx + i;
-                offset_[k] = data_.size();
+                const std::size_t k = std::size_t(j) * std::size_t(nx) + std::size_t(i), count = std::size_t(scratch.count);
+                if (data_.size() < used + 8 * count + read_padding)
+                    data_.resize(std::max(2 * data_.size(), used + 8 * count + read_padding));
+                offset_[k] = used;
                 count_[k] = scratch.count;
                 live_[k] = scratch.live;
-                for (int a = 0; a < 8; ++a)
-                    data_.insert(data_.end(), scratch.data + a * LrpTerms::capacity,
-                                 scratch.data + a * LrpTerms::capacity + scratch.count);
+                float* const to = data_.data() + used;
+                for (std::size_t a = 0; a < 8; ++a) {
+                    const float* const from = scratch.data + a * LrpTerms::capacity;
+                    std::size_t t = 0;
+                    for (; t + LrpTerms::lanes <= count; t += LrpTerms::lanes)
+                        std::memcpy(to + a * count + t, from + t, sizeof(float) * LrpTerms::lanes);
+                    for (; t < count; ++t) to[a * count + t] = from[t];
+                }
+                used += 8 * count;
             }
-        data_.resize(data_.size() + read_padding, 0.0f);
+        std::fill_n(data_.data() + used, read_padding, 0.0f);
     }
     std::int64_t i_begin() const { return i0_; }
     std::int64_t i_end() const { return i0_ + nx_; }
@@ -248,6 +271,9 @@ public:
     /// a stratum of zero amplitude (a channel-less band of the photo), whatever the filter.
     bool survives(const LrpFilter& filter) const;
     double spread() const { return spread_; }
+    /// 1 where channels 1 and 2 have zero amplitude (the structure's turbulence strata: their
+    /// sums there are +0), else 3: what the raster has to sum.
+    int channels() const { return amplitude_[1] == 0 && amplitude_[2] == 0 ? 1 : 3; }
 
 private:
     LrpLattice lattice_;

@@ -12,6 +12,15 @@
 // (sum_terms_separable), so the raster and the point path are bit-identical: every table value
 // is computed directly from its own dx or dy (no recurrence, nothing that drifts), and the SIMD
 // kernels (lrp_raster_kernels.h) repeat the scalar operations lane by lane.
+//
+// Two ways to lay that sum out over the lanes. `separable` goes window by window over its box of
+// pixels: a wide window fills the vectors, but a window 1–3 pixels wide fills 4 lanes at most
+// and pays its per-window calls and tables for a handful of pixels. `lattice_rows` goes pixel
+// row by pixel row with pixels as lanes, each lane summing its own 3×3 windows (slot by slot,
+// in sum_windows' order): a lattice row's column tables are made once for the whole width (each
+// lane's own window's frequency, gathered), a pixel row's row factors once for all the lattice
+// row's windows, and each lane takes its window's factors by a lane permutation. The same
+// factors and the same operations per pixel, so both give eval()'s values.
 #pragma once
 
 #include "models/lrp/lrp_noise.h"
@@ -26,10 +35,30 @@ struct LrpRasterGrid {
     int height = 0;
 };
 
+/// How lrp_raster_stratum sums (the same values either way).
+enum class LrpRasterMethod {
+    automatic,     ///< lattice_rows for windows narrower than lrp_lattice_row_spacing pixels, else separable
+    separable,     ///< window by window, each over its box of pixels (wide windows fill the vectors)
+    lattice_rows,  ///< pixel row by pixel row, each lane (pixel) with its own 3×3 windows
+};
+
+/// Lattice spacings, in grid columns, below which `automatic` takes the lattice-row raster.
+constexpr double lrp_lattice_row_spacing = 16;
+
+/// Whether `automatic` takes the lattice-row raster for this stratum on this grid.
+bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid);
+
+/// lrp_raster_stratum by the lattice-row raster, drawing the terms itself a lattice row at a time
+/// (no LrpTermCache of the region: for windows of a few pixels the cache's copy of every
+/// window's terms, several MB a region, cost more than drawing).
+void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
+                              float* const out[3], bool add = false);
+
 /// out[c][r · width + k] = noise.eval(x[k], y[r], filter)'s channel c, bit for bit, where `terms`
 /// holds the lattice points' terms under `filter` for every lattice point whose window reaches
-/// the grid. Buffers: one per-thread scratch, grown once (no allocation per call after that).
+/// the grid; with `add`, out[c][…] + that value instead (eval_region's sum over strata, without
+/// a pass of its own). Buffers: one per-thread scratch, grown once (no allocation per call after that).
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
-                        float* const out[3]);
+                        float* const out[3], LrpRasterMethod method = LrpRasterMethod::automatic, bool add = false);
 
 }  // namespace stochtex

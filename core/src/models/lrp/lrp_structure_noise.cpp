@@ -1,5 +1,6 @@
 #include "models/lrp/lrp_structure_noise.h"
 
+#include "numerics/exact_rounding.h"
 #include "numerics/random.h"
 
 #include <stochtex/error.h>
@@ -23,7 +24,7 @@ LrpPlacementWeights lrp_placement_weights(double position, double cell_size)
 {
     LrpPlacementWeights result;
     const double scaled = position / cell_size;
-    const std::int64_t cell = std::int64_t(std::floor(scaled));
+    const std::int64_t cell = std::int64_t(floor_exact(scaled));  // (no libm call: per sample)
     const double t = scaled - double(cell);
     result.cell[0] = cell;
     // Own weight ½ on the border rising to 1 at `placement_blend` inside, smoothstep-shaped (C¹).

@@ -126,15 +126,31 @@ struct RegionTerms {
     bool cached = false;
     LrpTermCache& terms = thread_term_cache();
 
+    /// The region's lattice points [i0, i1] × [j0, j1].
+    struct Box {
+        std::int64_t i0, i1, j0, j1;
+        Box(const LrpLattice& lattice, const double x_ends[2], const double y_ends[2])
+            : i0(std::min(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) - 1),
+              i1(std::max(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) + 1),
+              j0(std::min(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) - 1),
+              j1(std::max(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) + 1)
+        {
+        }
+    };
+
+    /// Whether drawing the region's windows once pays (not more than ~4 per pixel).
+    static bool pays(const LrpStratumNoise& stratum, const double x_ends[2], const double y_ends[2], std::size_t pixels)
+    {
+        const Box box(stratum.lattice(), x_ends, y_ends);
+        return double(box.i1 - box.i0 + 1) * double(box.j1 - box.j0 + 1) <= 4.0 * double(pixels) + 64;
+    }
+
     RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const double x_ends[2], const double y_ends[2],
                 std::size_t pixels)
     {
-        const LrpLattice& lattice = stratum.lattice();
-        const std::int64_t i0 = std::min(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) - 1;
-        const std::int64_t i1 = std::max(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) + 1;
-        const std::int64_t j0 = std::min(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) - 1;
-        const std::int64_t j1 = std::max(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) + 1;
-        cached = double(i1 - i0 + 1) * double(j1 - j0 + 1) <= 4.0 * double(pixels) + 64;
+        const Box box(stratum.lattice(), x_ends, y_ends);
+        const std::int64_t i0 = box.i0, i1 = box.i1, j0 = box.j0, j1 = box.j1;
+        cached = pays(stratum, x_ends, y_ends, pixels);
         if (cached)
             terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
                        [&](std::int64_t i, std::int64_t j, LrpTerms& out) { stratum.draw(i, j, filter, out); });
@@ -145,8 +161,9 @@ struct RegionTerms {
 struct RegionScratch {
     std::vector<double> x, y;
     std::vector<float> m[3], value[3];
+    std::vector<double> kept[3];               // m in double, for the colour mapping
     std::vector<float> turbulence[2][2];  // component, stratum: channel 0 per pixel
-    std::vector<LrpStructureSamples> samples;  // per pixel
+    std::vector<LrpStructureSamples> samples;  // per pixel of a chunk
     std::vector<float> dx, dy, sums[3];        // per structure sample
 };
 
@@ -156,21 +173,26 @@ RegionScratch& region_scratch()
     return s;
 }
 
-/// `stratum` under `filter` at every pixel of the grid into out[c][pixel]: the separable raster
-/// where the terms can be drawn once for the region, else eval() per pixel (identical values).
+/// `stratum` under `filter` at every pixel of the grid into out[c][pixel]: where the terms can be
+/// drawn once for the region, the lattice-row raster drawing its own (windows of a few pixels) or
+/// the separable raster over the region's term cache; else eval() per pixel (identical values).
+/// With `add`, out[c][pixel] + the value (the strata's sum, in eval()'s order).
 void stratum_values(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpRasterGrid& grid,
-                    float* const out[3])
+                    float* const out[3], bool add)
 {
     const double x_ends[2] = {grid.x[0], grid.x[grid.width - 1]};
     const double y_ends[2] = {grid.y[0], grid.y[grid.height - 1]};
-    const RegionTerms region(stratum, filter, x_ends, y_ends, std::size_t(grid.width) * std::size_t(grid.height));
-    if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out);
+    const std::size_t pixels = std::size_t(grid.width) * std::size_t(grid.height);
+    if (RegionTerms::pays(stratum, x_ends, y_ends, pixels) && lrp_raster_prefers_lattice_rows(stratum, grid))
+        return lrp_raster_stratum_drawn(stratum, filter, grid, out, add);
+    const RegionTerms region(stratum, filter, x_ends, y_ends, pixels);
+    if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out, LrpRasterMethod::separable, add);
     for (int r = 0; r < grid.height; ++r)
         for (int k = 0; k < grid.width; ++k) {
             float value[3];
             stratum.eval(grid.x[k], grid.y[r], filter, value);
             const std::size_t pixel = std::size_t(r) * std::size_t(grid.width) + std::size_t(k);
-            for (int c = 0; c < 3; ++c) out[c][pixel] = value[c];
+            for (int c = 0; c < 3; ++c) out[c][pixel] = add ? out[c][pixel] + value[c] : value[c];
         }
 }
 
@@ -199,19 +221,16 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
         s.value[c].resize(pixels);
     }
     float* const value[3] = {s.value[0].data(), s.value[1].data(), s.value[2].data()};
-    for (const LrpStratumNoise& stratum : strata_) {
-        if (!stratum.survives(filter)) continue;
-        stratum_values(stratum, filter, grid, value);
-        for (int c = 0; c < 3; ++c)
-            for (std::size_t p = 0; p < pixels; ++p) s.m[c][p] += value[c][p];
-    }
+    float* const m[3] = {s.m[0].data(), s.m[1].data(), s.m[2].data()};
+    for (const LrpStratumNoise& stratum : strata_)
+        if (stratum.survives(filter)) stratum_values(stratum, filter, grid, m, true);  // m += the stratum
 
     if (structure_) {
         // The turbulence strata are unfiltered strata on the same grid; the blocks are drawn once.
         for (int component = 0; component < 2; ++component) {
             const std::vector<LrpStratumNoise>& turbulence = structure_->turbulence_strata(component);
             for (std::size_t k = 0; k < turbulence.size(); ++k) {
-                stratum_values(turbulence[k], LrpFilter{}, grid, value);
+                stratum_values(turbulence[k], LrpFilter{}, grid, value, false);
                 s.turbulence[component][k].assign(s.value[0].begin(), s.value[0].begin() + std::ptrdiff_t(pixels));
             }
         }
@@ -226,33 +245,39 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
             };
         };
         if (cache_blocks && structure_->single_block()) {
-            // One block: every sample is sum_terms of the same terms, so the samples of the whole
-            // region go through the SIMD kernel at once (pixels as lanes), then combine as
-            // eval_with does.
-            s.samples.resize(pixels);
-            s.dx.clear(), s.dy.clear();
-            for (std::size_t p = 0; p < pixels; ++p) {
-                const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
-                s.samples[p] = structure_->samples(x, y, turbulence_at(p));
-                for (int k = 0; k < s.samples[p].count; ++k) {
-                    float dx, dy;
-                    structure_->nearest_offset(s.samples[p].sample[k].xi, s.samples[p].sample[k].eta, dx, dy);
-                    s.dx.push_back(dx), s.dy.push_back(dy);
+            // One block: every sample is sum_terms of the same terms, so the samples go through
+            // the SIMD kernel together (pixels as lanes), then combine as eval_with does. In
+            // chunks of pixels: a whole region's samples (~100 bytes a pixel) left the cache
+            // between their making and their use.
+            constexpr std::size_t chunk = 1024;
+            for (std::size_t first = 0; first < pixels; first += chunk) {
+                const std::size_t end = std::min(pixels, first + chunk);
+                s.samples.resize(chunk);
+                s.dx.clear(), s.dy.clear();
+                for (std::size_t p = first; p < end; ++p) {
+                    const double x = s.x[p % std::size_t(region.width)], y = s.y[p / std::size_t(region.width)];
+                    LrpStructureSamples& samples = s.samples[p - first];
+                    samples = structure_->samples(x, y, turbulence_at(p));
+                    for (int k = 0; k < samples.count; ++k) {
+                        float dx, dy;
+                        structure_->nearest_offset(samples.sample[k].xi, samples.sample[k].eta, dx, dy);
+                        s.dx.push_back(dx), s.dy.push_back(dy);
+                    }
                 }
-            }
-            const std::size_t n = s.dx.size();
-            s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
-            for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
-            float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
-            lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
-            std::size_t next = 0;
-            for (std::size_t p = 0; p < pixels; ++p) {
-                const LrpStructureSamples& samples = s.samples[p];
-                float structure[3] = {0, 0, 0};
-                for (int k = 0; k < samples.count; ++k, ++next)
-                    for (int c = 0; c < 3; ++c)
-                        structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
-                for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+                const std::size_t n = s.dx.size();
+                s.dx.resize(n + lrp_raster::padding, 0.0f), s.dy.resize(n + lrp_raster::padding, 0.0f);
+                for (auto& channel : s.sums) channel.resize(std::max(channel.size(), n + lrp_raster::padding));
+                float* const sums[3] = {s.sums[0].data(), s.sums[1].data(), s.sums[2].data()};
+                lrp_raster::sum_terms_at(blocks.at(0, 0), s.dx.data(), s.dy.data(), n, sums);
+                std::size_t next = 0;
+                for (std::size_t p = first; p < end; ++p) {
+                    const LrpStructureSamples& samples = s.samples[p - first];
+                    float structure[3] = {0, 0, 0};
+                    for (int k = 0; k < samples.count; ++k, ++next)
+                        for (int c = 0; c < 3; ++c)
+                            structure[c] = samples.blended ? structure[c] + samples.sample[k].weight * sums[c][next] : sums[c][next];
+                    for (int c = 0; c < 3; ++c) s.m[c][p] += structure[c];
+                }
             }
         } else {
             for (std::size_t p = 0; p < pixels; ++p) {
@@ -266,10 +291,9 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
             }
         }
     }
-    for (std::size_t p = 0; p < pixels; ++p) {
-        const float m[3] = {s.m[0][p], s.m[1][p], s.m[2][p]};
-        rgb.set(p, finish(m, dropped));
-    }
+    // finish() for the whole region at once (the batch colour mapping: the same operations).
+    for (int c = 0; c < 3; ++c) s.kept[c].assign(s.m[c].begin(), s.m[c].begin() + std::ptrdiff_t(pixels));
+    colour_.to_rgb({s.kept[0].data(), s.kept[1].data(), s.kept[2].data()}, 1.0, dropped, rgb, 0, pixels);
 }
 
 void LrpTexture::eval_solid_region(const SolidRegion& region, const RgbOutput& rgb) const
