@@ -67,13 +67,15 @@ void TabulatedColourMapping::to_rgb(const std::array<const double*, 3>& z, const
         for (int c = 0; c < 3; ++c) {
             const double* zc = z[c] + start;
             const double* sc = dropped_sigma[c] + start;
-            if (exact_.has_map(c)) {
-                const Table& t = tables_[c];
-                tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
+            if (!exact_.has_map(c)) {
+                for (std::size_t i = 0; i < n; ++i) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
+                continue;
             }
+            const Table& t = tables_[c];
+            tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
             // map_channel()'s cases outside the table, item by item.
             for (std::size_t i = 0; i < n; ++i)
-                if (!exact_.has_map(c) || sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
+                if (sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
         }
         if (exact_.conditions())
             for (std::size_t i = 0; i < n; ++i) {

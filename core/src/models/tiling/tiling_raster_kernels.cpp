@@ -5,7 +5,6 @@
 #define HWY_TARGET_INCLUDE "models/tiling/tiling_raster_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
-#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include "numerics/small_table-inl.h"
@@ -125,25 +124,11 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     for (int p = 0; p < P::count && Channels + p < int(hn::MaxLanes(df)); ++p)
         first_index[Channels + p] = P::first[p], second_index[Channels + p] = P::second[p];
     const auto first_lanes = hn::SetTableIndices(df, first_index), second_lanes = hn::SetTableIndices(df, second_index);
-    // The records a position reads are spread over three tiles (and two levels), more streams
-    // than the hardware prefetchers follow; in the profile the hottest instruction was the one
-    // waiting on a record load. Their addresses are known a chunk ahead, so the lines of the
-    // position `ahead` of this one are requested now (a hint: no value changes).
-    constexpr std::size_t ahead = 3;
-    auto prefetch = [&](std::size_t l) {
-        for (int k = 0; k < taps; ++k)
-            for (int tile = 0; tile < 3; ++tile) {
-                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                for (int field = 0; field < (Upper ? 4 : 2); ++field) {
-                    const float* r = (field < 2 ? s.lower : s.upper) + at_offsets(run, field)[l];
-                    hwy::Prefetch(r);
-                    hwy::Prefetch(r + 2 * record - 1);  // the pair may straddle two lines
-                }
-            }
-    };
-    for (std::size_t l = 0; l < std::min(ahead, count); ++l) prefetch(l);
+    // No software prefetch of the records: an earlier version asked for the lines of the
+    // position three ahead from a lambda, which GCC 12 took for a function without effects and
+    // dropped (no prefetch instruction was ever emitted); written so that it is emitted, it made
+    // Render/Raster/colour 16 % slower (12 % with one line per record) — the hardware keeps up.
     for (std::size_t l = 0; l < count; ++l) {
-        if (l + ahead < count) prefetch(l + ahead);
         float result[record] = {};
         // one_vector's result: the mean lanes of `means`, the moment lanes of `moments` (two
         // registers, so that the next tap's deltas wait on the means' chain alone).
