@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 #include "models/tiling/tiling_raster_kernels.h"
 
@@ -128,7 +129,96 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     // position three ahead from a lambda, which GCC 12 took for a function without effects and
     // dropped (no prefetch instruction was ever emitted); written so that it is emitted, it made
     // Render/Raster/colour 16 % slower (12 % with one line per record) — the hardware keeps up.
-    for (std::size_t l = 0; l < count; ++l) {
+    std::size_t first_single = 0;
+    // Where a vector holds two records (AVX-512), two positions go through one vector,
+    // interleaved (lane 2j + p: record lane j of position p), with the same operations lane by
+    // lane as one position alone: the fields of positions l and l + 1 are adjacent, so each
+    // factor comes as one 8-byte broadcast; each texel pair's two records are interleaved by a
+    // lane permutation. Odd counts leave the last position to the loop below.
+#if HWY_TARGET != HWY_SCALAR  // (no Combine there; it has one lane anyway)
+    constexpr bool two_positions = !HWY_HAVE_SCALABLE && HWY_MAX_BYTES == 64;
+    if constexpr (two_positions) {
+        const hn::ScalableTag<float> dz;
+        const hn::Half<decltype(dz)> dh;
+        const hn::Repartition<std::uint64_t, decltype(dz)> du64;
+        constexpr std::size_t lanes = hn::MaxLanes(dz);
+        std::int32_t interleave[lanes], deinterleave[lanes], first2[lanes], second2[lanes];
+        for (std::size_t k = 0; k < lanes; ++k) {
+            const int j = int(k / 2), q = int(k % 2), pair = j - Channels;
+            interleave[k] = std::int32_t(q * 8 + j);
+            deinterleave[k] = std::int32_t((k % 8) * 2 + k / 8);
+            const bool moment = pair >= 0 && pair < P::count;
+            first2[k] = std::int32_t(moment ? 2 * P::first[std::max(pair, 0)] + q : q);
+            second2[k] = std::int32_t(moment ? 2 * P::second[std::max(pair, 0)] + q : q);
+        }
+        const auto interleaved = hn::SetTableIndices(dz, interleave), deinterleaved = hn::SetTableIndices(dz, deinterleave);
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+        // vpermt2ps's indices: 0–15 the first table, 16–31 the second.
+        std::int32_t left_index[lanes], right_index[lanes];
+        for (std::size_t k = 0; k < lanes; ++k)
+            left_index[k] = std::int32_t((k % 2) * 16 + k / 2), right_index[k] = left_index[k] + 8;
+        const hn::RebindToSigned<decltype(dz)> di32;
+        const auto left = hn::LoadU(di32, left_index), right = hn::LoadU(di32, right_index);
+#endif
+        const auto first_pairs = hn::SetTableIndices(dz, first2), second_pairs = hn::SetTableIndices(dz, second2);
+        const auto means2 = hn::FirstN(dz, 2 * Channels), used2 = hn::FirstN(dz, 2 * (Channels + P::count));
+        const auto level_t2 = hn::Set(dz, s.t), tap_weight2 = hn::Set(dz, s.weight), inverse_total2 = hn::Set(dz, s.inverse_total);
+        auto factor = [&](const float* f) {  // [f[0], f[1]] in every lane pair
+            std::uint64_t bits;
+            std::memcpy(&bits, f, sizeof bits);
+            return hn::BitCast(dz, hn::Set(du64, bits));
+        };
+        // A texel row's two records of positions a and b, interleaved: [left, right].
+        auto texels = [&](const float* data, std::int32_t a, std::int32_t b, hn::Vec<decltype(dz)>* pair) {
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+            const auto va = hn::LoadU(dz, data + a), vb = hn::LoadU(dz, data + b);
+            pair[0] = hn::Vec<decltype(dz)>{_mm512_permutex2var_ps(va.raw, left.raw, vb.raw)};
+            pair[1] = hn::Vec<decltype(dz)>{_mm512_permutex2var_ps(va.raw, right.raw, vb.raw)};
+#else
+            for (int side = 0; side < 2; ++side)
+                pair[side] = hn::TableLookupLanes(
+                    hn::Combine(dz, hn::LoadU(dh, data + b + side * record), hn::LoadU(dh, data + a + side * record)), interleaved);
+#endif
+        };
+        for (; first_single + 2 <= count; first_single += 2) {
+            const std::size_t l = first_single;
+            auto means = hn::Zero(dz), moments = hn::Zero(dz);
+            for (int k = 0; k < taps; ++k) {
+                auto sum = hn::Zero(dz);
+                for (int tile = 0; tile < 3; ++tile) {
+                    const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
+                    auto bilinear = [&](const float* data, int field, int fraction) {
+                        const std::int32_t* o0 = at_offsets(run, field) + l;
+                        const std::int32_t* o1 = at_offsets(run, field + 1) + l;
+                        const auto vx = factor(at_fractions(run, fraction) + l), vy = factor(at_fractions(run, fraction + 1) + l);
+                        const auto sx = factor(at_fractions(run, fraction + 5) + l), sy = factor(at_fractions(run, fraction + 6) + l);
+                        hn::Vec<decltype(dz)> row0[2], row1[2];
+                        texels(data, o0[0], o0[1], row0);
+                        texels(data, o1[0], o1[1], row1);
+                        const auto low = hn::Add(hn::Mul(sx, row0[0]), hn::Mul(vx, row0[1]));
+                        const auto high = hn::Add(hn::Mul(sx, row1[0]), hn::Mul(vx, row1[1]));
+                        return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
+                    };
+                    auto sample = bilinear(s.lower, 0, 0);
+                    if (Upper) sample = hn::Add(sample, hn::Mul(level_t2, hn::Sub(bilinear(s.upper, 2, 2), sample)));
+                    const auto weights = hn::IfThenElse(means2, factor(at_fractions(run, 4) + l), factor(at_fractions(run, 9) + l));
+                    sum = hn::Add(sum, hn::Mul(weights, sample));
+                }
+                if (taps == 1) {
+                    means = moments = sum;
+                    break;
+                }
+                const auto delta = hn::Sub(sum, means);
+                const auto products = hn::Mul(hn::TableLookupLanes(delta, first_pairs), hn::TableLookupLanes(delta, second_pairs));
+                means = hn::Add(means, hn::Mul(hn::Set(dz, s.ratio[k]), delta));
+                moments = hn::Add(moments, hn::Add(hn::Mul(tap_weight2, sum), hn::Mul(hn::Set(dz, s.scatter[k]), products)));
+            }
+            const auto scaled = hn::IfThenElse(means2, means, taps == 1 ? moments : hn::Mul(moments, inverse_total2));
+            hn::StoreU(hn::TableLookupLanes(hn::IfThenElseZero(used2, scaled), deinterleaved), dz, out + l * record);
+        }
+    }
+#endif
+    for (std::size_t l = first_single; l < count; ++l) {
         float result[record] = {};
         // one_vector's result: the mean lanes of `means`, the moment lanes of `moments` (two
         // registers, so that the next tap's deltas wait on the means' chain alone).
