@@ -101,12 +101,163 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
     }
 }
 
+/// SetTableIndices' result for tag D (Highway 1.0 names no such type).
+template <class D>
+using IndicesOf = decltype(hn::SetTableIndices(D(), static_cast<const std::int32_t*>(nullptr)));
+
+/// Record lanes of one position per vector (AVX2, AVX-512): lane j is record lane j.
+template <int Channels>
+struct OneRecord {
+    using P = RecordPairs<Channels>;
+    using D = hn::CappedTag<float, 8>;
+    static constexpr std::size_t positions = 1;
+    D d;
+    hn::Mask<D> means = hn::FirstN(d, Channels), used = hn::FirstN(d, Channels + P::count);
+    IndicesOf<D> first, second;  ///< moment lane C + p reads delta[first p] · delta[second p]
+    OneRecord()
+    {
+        std::int32_t a[hn::MaxLanes(D())] = {}, b[hn::MaxLanes(D())] = {};
+        for (int p = 0; p < P::count; ++p) a[Channels + p] = P::first[p], b[Channels + p] = P::second[p];
+        first = hn::SetTableIndices(d, a), second = hn::SetTableIndices(d, b);
+    }
+    /// A field's value of the position at f.
+    hn::Vec<D> factor(const float* f) const { return hn::Set(d, f[0]); }
+    /// The texel row's two records (left, right) at the position's offset.
+    void texels(const float* data, const std::int32_t* offset, hn::Vec<D>* pair) const
+    {
+        pair[0] = hn::LoadU(d, data + offset[0]), pair[1] = hn::LoadU(d, data + offset[0] + 8);
+    }
+    void store(hn::Vec<D> v, float* out) const { hn::StoreU(v, d, out); }
+};
+
+#if HWY_TARGET != HWY_SCALAR  // (no Combine there; it holds one lane anyway)
+/// Two positions per vector where a vector holds two records (AVX-512), interleaved: lane
+/// 2j + q is record lane j of position q. The fields of positions l and l + 1 are adjacent, so
+/// a factor is one 8-byte broadcast; a texel row's records of both are interleaved by lane
+/// permutations (two-table ones on AVX-512: vpermt2ps), and de-interleaved by the store.
+template <int Channels>
+struct TwoRecords {
+    using P = RecordPairs<Channels>;
+    using D = hn::ScalableTag<float>;
+    static constexpr std::size_t positions = 2, lanes = hn::MaxLanes(D());
+    D d;
+    hn::Mask<D> means = hn::FirstN(d, 2 * Channels), used = hn::FirstN(d, 2 * (Channels + P::count));
+    IndicesOf<D> first, second, interleaved, deinterleaved;
+    hn::Vec<hn::RebindToSigned<D>> left, right;  ///< vpermt2ps's: 0–15 the first table, 16–31 the second
+    TwoRecords()
+    {
+        std::int32_t a[lanes], b[lanes], in[lanes], back[lanes], l[lanes], r[lanes];
+        for (std::size_t k = 0; k < lanes; ++k) {
+            const int j = int(k / 2), q = int(k % 2), pair = j - Channels;
+            const bool moment = pair >= 0 && pair < P::count;
+            a[k] = std::int32_t(moment ? 2 * P::first[std::max(pair, 0)] + q : q);
+            b[k] = std::int32_t(moment ? 2 * P::second[std::max(pair, 0)] + q : q);
+            in[k] = std::int32_t(q * 8 + j), back[k] = std::int32_t((k % 8) * 2 + k / 8);
+            l[k] = std::int32_t(q * 16 + j), r[k] = l[k] + 8;
+        }
+        first = hn::SetTableIndices(d, a), second = hn::SetTableIndices(d, b);
+        interleaved = hn::SetTableIndices(d, in), deinterleaved = hn::SetTableIndices(d, back);
+        const hn::RebindToSigned<D> di;
+        left = hn::LoadU(di, l), right = hn::LoadU(di, r);
+    }
+    hn::Vec<D> factor(const float* f) const
+    {
+        const hn::Repartition<std::uint64_t, D> du64;
+        std::uint64_t bits;
+        std::memcpy(&bits, f, sizeof bits);
+        return hn::BitCast(d, hn::Set(du64, bits));
+    }
+    void texels(const float* data, const std::int32_t* offset, hn::Vec<D>* pair) const
+    {
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+        const auto a = hn::LoadU(d, data + offset[0]), b = hn::LoadU(d, data + offset[1]);
+        pair[0] = hn::Vec<D>{_mm512_permutex2var_ps(a.raw, left.raw, b.raw)};
+        pair[1] = hn::Vec<D>{_mm512_permutex2var_ps(a.raw, right.raw, b.raw)};
+#else
+        const hn::Half<D> dh;
+        for (int side = 0; side < 2; ++side)
+            pair[side] = hn::TableLookupLanes(
+                hn::Combine(d, hn::LoadU(dh, data + offset[1] + side * 8), hn::LoadU(dh, data + offset[0] + side * 8)), interleaved);
+#endif
+    }
+    void store(hn::Vec<D> v, float* out) const { hn::StoreU(hn::TableLookupLanes(v, deinterleaved), d, out); }
+};
+#endif
+
+/// AccumulateTaps' lookups and mixture on whole-record vectors laid out by L (OneRecord,
+/// TwoRecords), for the positions from `first` on in steps of L::positions while a step fits;
+/// returns the first position left. Per tap, the three tiles' bilinear records weighted by w on
+/// the mean lanes and w² on the others (what w · (1 + w · 0) and w · (0 + w · 1) are, exactly);
+/// then the mixture, lane-wise: the mean lanes take result + ratio · delta, moment lane C + p
+/// takes result + (weight · m + scatter · delta[first p] · delta[second p]), the deltas brought to
+/// it by a lane lookup. The running means and moments are two registers, so that the next tap's
+/// deltas wait on the means' chain alone.
+template <bool Upper, int Taps, class L>
+std::size_t AccumulateVectors(const TapSums& s, std::size_t first, std::size_t count, float* out, const L& layout)
+{
+    const typename L::D d;
+    const int taps = Taps > 0 ? Taps : s.taps;
+    const auto level_t = hn::Set(d, s.t), tap_weight = hn::Set(d, s.weight), inverse_total = hn::Set(d, s.inverse_total);
+    std::size_t l = first;
+    for (; l + L::positions <= count; l += L::positions) {
+        auto means = hn::Zero(d), moments = hn::Zero(d);
+        for (int k = 0; k < taps; ++k) {
+            auto sum = hn::Zero(d);
+            for (int tile = 0; tile < 3; ++tile) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
+                const std::int32_t* offsets = s.offsets + run * 4 * chunk + l;
+                const float* fractions = s.fractions + run * 10 * chunk + l;
+                auto field = [&](int f) { return layout.factor(fractions + std::size_t(f) * chunk); };
+                auto bilinear = [&](const float* data, int row, int fraction) {
+                    hn::Vec<typename L::D> row0[2], row1[2];
+                    layout.texels(data, offsets + std::size_t(row) * chunk, row0);
+                    layout.texels(data, offsets + std::size_t(row + 1) * chunk, row1);
+                    const auto vx = field(fraction), vy = field(fraction + 1), sx = field(fraction + 5), sy = field(fraction + 6);
+                    const auto low = hn::Add(hn::Mul(sx, row0[0]), hn::Mul(vx, row0[1]));
+                    const auto high = hn::Add(hn::Mul(sx, row1[0]), hn::Mul(vx, row1[1]));
+                    return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
+                };
+                auto sample = bilinear(s.lower, 0, 0);
+                if (Upper) sample = hn::Add(sample, hn::Mul(level_t, hn::Sub(bilinear(s.upper, 2, 2), sample)));
+                sum = hn::Add(sum, hn::Mul(hn::IfThenElse(layout.means, field(4), field(9)), sample));
+            }
+            if (taps == 1) {
+                means = moments = sum;
+                break;
+            }
+            const auto delta = hn::Sub(sum, means);
+            const auto products = hn::Mul(hn::TableLookupLanes(delta, layout.first), hn::TableLookupLanes(delta, layout.second));
+            means = hn::Add(means, hn::Mul(hn::Set(d, s.ratio[k]), delta));
+            moments = hn::Add(moments, hn::Add(hn::Mul(tap_weight, sum), hn::Mul(hn::Set(d, s.scatter[k]), products)));
+        }
+        // Lanes past the kept moments stay 0, as in the scalar form.
+        const auto scaled = hn::IfThenElse(layout.means, means, taps == 1 ? moments : hn::Mul(moments, inverse_total));
+        layout.store(hn::IfThenElseZero(layout.used, scaled), out + l * 8);
+    }
+    return l;
+}
+
 /// AccumulateTaps for a channel count, one or two levels and (Taps > 0) a tap count known at
 /// compile time, so the loops unroll into registers and every field of a position is at a fixed
 /// distance from its first (the same operations as with them at run time).
 template <int Channels, bool Upper, int Taps>
 void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
 {
+    // No software prefetch of the records: an earlier version asked for the lines of the
+    // position three ahead from a lambda, which GCC 12 took for a function without effects and
+    // dropped (no prefetch instruction was ever emitted); written so that it is emitted, it made
+    // Render/Raster/colour 16 % slower (12 % with one line per record) — the hardware keeps up.
+    //
+    // A record in one vector (AVX2, AVX-512): the lookups and mixture run on vectors, two
+    // positions per vector where it holds two records; else on parts of a record and scalars.
+    if constexpr (!HWY_HAVE_SCALABLE && HWY_MAX_BYTES >= 32) {
+        std::size_t first = 0;
+#if HWY_TARGET != HWY_SCALAR
+        if constexpr (HWY_MAX_BYTES == 64) first = AccumulateVectors<Upper, Taps>(s, 0, count, out, TwoRecords<Channels>());
+#endif
+        AccumulateVectors<Upper, Taps>(s, first, count, out, OneRecord<Channels>());
+        return;
+    }
     using P = RecordPairs<Channels>;
     constexpr int record = 8;
     const hn::CappedTag<float, record> df;
@@ -115,121 +266,16 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * chunk; };
     auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 10 + std::size_t(field)) * chunk; };
     const auto level_t = hn::Set(df, s.t);
-    // A record in one vector (AVX2, AVX-512): the mixture runs on vectors; else on scalars.
-    constexpr bool one_vector = !HWY_HAVE_SCALABLE && HWY_MAX_BYTES >= 32;
-    const auto mean_lanes = hn::FirstN(df, Channels), used_lanes = hn::FirstN(df, Channels + P::count);
     hn::Mask<decltype(df)> part_means[record];  // the mean lanes of each part of a record
     for (int h = 0; h < parts; ++h) part_means[h] = hn::FirstN(df, std::size_t(std::max(0, Channels - h * step)));
-    const auto tap_weight = hn::Set(df, s.weight), inverse_total = hn::Set(df, s.inverse_total);
-    std::int32_t first_index[hn::MaxLanes(decltype(df)())] = {}, second_index[hn::MaxLanes(decltype(df)())] = {};
-    for (int p = 0; p < P::count && Channels + p < int(hn::MaxLanes(df)); ++p)
-        first_index[Channels + p] = P::first[p], second_index[Channels + p] = P::second[p];
-    const auto first_lanes = hn::SetTableIndices(df, first_index), second_lanes = hn::SetTableIndices(df, second_index);
-    // No software prefetch of the records: an earlier version asked for the lines of the
-    // position three ahead from a lambda, which GCC 12 took for a function without effects and
-    // dropped (no prefetch instruction was ever emitted); written so that it is emitted, it made
-    // Render/Raster/colour 16 % slower (12 % with one line per record) — the hardware keeps up.
-    std::size_t first_single = 0;
-    // Where a vector holds two records (AVX-512), two positions go through one vector,
-    // interleaved (lane 2j + p: record lane j of position p), with the same operations lane by
-    // lane as one position alone: the fields of positions l and l + 1 are adjacent, so each
-    // factor comes as one 8-byte broadcast; each texel pair's two records are interleaved by a
-    // lane permutation. Odd counts leave the last position to the loop below.
-#if HWY_TARGET != HWY_SCALAR  // (no Combine there; it has one lane anyway)
-    constexpr bool two_positions = !HWY_HAVE_SCALABLE && HWY_MAX_BYTES == 64;
-    if constexpr (two_positions) {
-        const hn::ScalableTag<float> dz;
-        const hn::Half<decltype(dz)> dh;
-        const hn::Repartition<std::uint64_t, decltype(dz)> du64;
-        constexpr std::size_t lanes = hn::MaxLanes(dz);
-        std::int32_t interleave[lanes], deinterleave[lanes], first2[lanes], second2[lanes];
-        for (std::size_t k = 0; k < lanes; ++k) {
-            const int j = int(k / 2), q = int(k % 2), pair = j - Channels;
-            interleave[k] = std::int32_t(q * 8 + j);
-            deinterleave[k] = std::int32_t((k % 8) * 2 + k / 8);
-            const bool moment = pair >= 0 && pair < P::count;
-            first2[k] = std::int32_t(moment ? 2 * P::first[std::max(pair, 0)] + q : q);
-            second2[k] = std::int32_t(moment ? 2 * P::second[std::max(pair, 0)] + q : q);
-        }
-        const auto interleaved = hn::SetTableIndices(dz, interleave), deinterleaved = hn::SetTableIndices(dz, deinterleave);
-#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-        // vpermt2ps's indices: 0–15 the first table, 16–31 the second.
-        std::int32_t left_index[lanes], right_index[lanes];
-        for (std::size_t k = 0; k < lanes; ++k)
-            left_index[k] = std::int32_t((k % 2) * 16 + k / 2), right_index[k] = left_index[k] + 8;
-        const hn::RebindToSigned<decltype(dz)> di32;
-        const auto left = hn::LoadU(di32, left_index), right = hn::LoadU(di32, right_index);
-#endif
-        const auto first_pairs = hn::SetTableIndices(dz, first2), second_pairs = hn::SetTableIndices(dz, second2);
-        const auto means2 = hn::FirstN(dz, 2 * Channels), used2 = hn::FirstN(dz, 2 * (Channels + P::count));
-        const auto level_t2 = hn::Set(dz, s.t), tap_weight2 = hn::Set(dz, s.weight), inverse_total2 = hn::Set(dz, s.inverse_total);
-        auto factor = [&](const float* f) {  // [f[0], f[1]] in every lane pair
-            std::uint64_t bits;
-            std::memcpy(&bits, f, sizeof bits);
-            return hn::BitCast(dz, hn::Set(du64, bits));
-        };
-        // A texel row's two records of positions a and b, interleaved: [left, right].
-        auto texels = [&](const float* data, std::int32_t a, std::int32_t b, hn::Vec<decltype(dz)>* pair) {
-#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
-            const auto va = hn::LoadU(dz, data + a), vb = hn::LoadU(dz, data + b);
-            pair[0] = hn::Vec<decltype(dz)>{_mm512_permutex2var_ps(va.raw, left.raw, vb.raw)};
-            pair[1] = hn::Vec<decltype(dz)>{_mm512_permutex2var_ps(va.raw, right.raw, vb.raw)};
-#else
-            for (int side = 0; side < 2; ++side)
-                pair[side] = hn::TableLookupLanes(
-                    hn::Combine(dz, hn::LoadU(dh, data + b + side * record), hn::LoadU(dh, data + a + side * record)), interleaved);
-#endif
-        };
-        for (; first_single + 2 <= count; first_single += 2) {
-            const std::size_t l = first_single;
-            auto means = hn::Zero(dz), moments = hn::Zero(dz);
-            for (int k = 0; k < taps; ++k) {
-                auto sum = hn::Zero(dz);
-                for (int tile = 0; tile < 3; ++tile) {
-                    const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                    auto bilinear = [&](const float* data, int field, int fraction) {
-                        const std::int32_t* o0 = at_offsets(run, field) + l;
-                        const std::int32_t* o1 = at_offsets(run, field + 1) + l;
-                        const auto vx = factor(at_fractions(run, fraction) + l), vy = factor(at_fractions(run, fraction + 1) + l);
-                        const auto sx = factor(at_fractions(run, fraction + 5) + l), sy = factor(at_fractions(run, fraction + 6) + l);
-                        hn::Vec<decltype(dz)> row0[2], row1[2];
-                        texels(data, o0[0], o0[1], row0);
-                        texels(data, o1[0], o1[1], row1);
-                        const auto low = hn::Add(hn::Mul(sx, row0[0]), hn::Mul(vx, row0[1]));
-                        const auto high = hn::Add(hn::Mul(sx, row1[0]), hn::Mul(vx, row1[1]));
-                        return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
-                    };
-                    auto sample = bilinear(s.lower, 0, 0);
-                    if (Upper) sample = hn::Add(sample, hn::Mul(level_t2, hn::Sub(bilinear(s.upper, 2, 2), sample)));
-                    const auto weights = hn::IfThenElse(means2, factor(at_fractions(run, 4) + l), factor(at_fractions(run, 9) + l));
-                    sum = hn::Add(sum, hn::Mul(weights, sample));
-                }
-                if (taps == 1) {
-                    means = moments = sum;
-                    break;
-                }
-                const auto delta = hn::Sub(sum, means);
-                const auto products = hn::Mul(hn::TableLookupLanes(delta, first_pairs), hn::TableLookupLanes(delta, second_pairs));
-                means = hn::Add(means, hn::Mul(hn::Set(dz, s.ratio[k]), delta));
-                moments = hn::Add(moments, hn::Add(hn::Mul(tap_weight2, sum), hn::Mul(hn::Set(dz, s.scatter[k]), products)));
-            }
-            const auto scaled = hn::IfThenElse(means2, means, taps == 1 ? moments : hn::Mul(moments, inverse_total2));
-            hn::StoreU(hn::TableLookupLanes(hn::IfThenElseZero(used2, scaled), deinterleaved), dz, out + l * record);
-        }
-    }
-#endif
-    for (std::size_t l = first_single; l < count; ++l) {
+    for (std::size_t l = 0; l < count; ++l) {
         float result[record] = {};
-        // one_vector's result: the mean lanes of `means`, the moment lanes of `moments` (two
-        // registers, so that the next tap's deltas wait on the means' chain alone).
-        auto means = hn::Zero(df), moments = hn::Zero(df);
         for (int k = 0; k < taps; ++k) {
             hn::Vec<decltype(df)> sum[record] = {};
             for (int h = 0; h < parts; ++h) sum[h] = hn::Zero(df);
             for (int tile = 0; tile < 3; ++tile) {
                 const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                // The tile's weights on the record: w on the mean lanes, w² on the others (what
-                // w · (1 + w · 0) and w · (0 + w · 1) are, exactly).
+                // The tile's weights on the record: w on the mean lanes, w² on the others.
                 const auto vw = hn::Set(df, at_fractions(run, 4)[l]), vw2 = hn::Set(df, at_fractions(run, 9)[l]);
                 auto bilinear = [&](const float* data, int field, int fraction, int h) {
                     const float* r0 = data + at_offsets(run, field)[l] + h * step;
@@ -247,20 +293,6 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                     sum[h] = hn::Add(sum[h], hn::Mul(weights, sample));
                 }
             }
-            if constexpr (one_vector) {
-                // The mixture below, lane-wise on the whole record: the mean lanes take
-                // result + ratio · delta, moment lane C + p takes result + (weight · m + scatter ·
-                // delta[first p] · delta[second p]), the deltas brought to it by a lane lookup.
-                if (taps == 1) {
-                    means = moments = sum[0];
-                    break;
-                }
-                const auto delta = hn::Sub(sum[0], means);
-                const auto products = hn::Mul(hn::TableLookupLanes(delta, first_lanes), hn::TableLookupLanes(delta, second_lanes));
-                means = hn::Add(means, hn::Mul(hn::Set(df, s.ratio[k]), delta));
-                moments = hn::Add(moments, hn::Add(hn::Mul(tap_weight, sum[0]), hn::Mul(hn::Set(df, s.scatter[k]), products)));
-                continue;
-            }
             float m[record];
             for (int h = 0; h < parts; ++h) hn::StoreU(sum[h], df, m + h * step);
             if (taps == 1) {
@@ -276,12 +308,6 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                 result[Channels + p] += s.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
         }
         float* o = out + l * record;
-        if constexpr (one_vector) {
-            // Lanes past the kept moments stay 0, as in the scalar form.
-            const auto scaled = hn::IfThenElse(mean_lanes, means, taps == 1 ? moments : hn::Mul(moments, inverse_total));
-            hn::StoreU(hn::IfThenElseZero(used_lanes, scaled), df, o);
-            continue;
-        }
         for (int r = 0; r < record; ++r) o[r] = taps == 1 || r < Channels ? result[r] : result[r] * s.inverse_total;
     }
 }
