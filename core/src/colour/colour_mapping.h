@@ -52,8 +52,13 @@ public:
     {
         if (chroma_.enabled()) chroma_.apply(z0, dropped0, y[1], y[2]);
     }
+    /// Whether condition() changes anything (the description has joint colour).
+    bool conditions() const { return chroma_.enabled(); }
     /// to_rgb's last step: the colour of mapped channel values y.
     Rgb combine(const std::array<double, 3>& y) const;
+    /// combine() of `count` items (item i: y[c][i]) into out items first + i, vectorised
+    /// (colour_mapping_batch.cpp), bit-identical to combine() item by item.
+    void combine(const std::array<const double*, 3>& y, const RgbOutput& out, std::size_t first, std::size_t count) const;
 
 private:
     /// The batch to_rgb()s' common body, in blocks: z from kept, `map_block(c, z, y, start, n)`

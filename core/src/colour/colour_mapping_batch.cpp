@@ -11,6 +11,7 @@
 #include "colour/colour_mapping.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
+#include "numerics/small_table-inl.h"
 
 #include <algorithm>
 
@@ -31,39 +32,7 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::colour_batch::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// A table of up to 4 vectors of doubles, read by lane permutations (the knot arrays are short:
-/// a permutation per vector and a blend beat a gather).
-template <class D>
-class SmallTable {
-public:
-    static constexpr std::size_t max_vectors = 4;
-    SmallTable(D d, const double* values, std::size_t count) : vectors_((count + hn::Lanes(d) - 1) / hn::Lanes(d))
-    {
-        const std::size_t lanes = hn::Lanes(d);
-        for (std::size_t v = 0; v < vectors_; ++v) {
-            double chunk[hn::MaxLanes(D())] = {};
-            for (std::size_t k = 0; k < lanes && v * lanes + k < count; ++k) chunk[k] = values[v * lanes + k];
-            table_[v] = hn::LoadU(d, chunk);
-        }
-    }
-    static bool fits(D d, std::size_t count) { return count <= max_vectors * hn::Lanes(d); }
-    hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const
-    {
-        const hn::RebindToSigned<D> di;
-        const std::int64_t lanes = std::int64_t(hn::Lanes(d));
-        const auto lane = hn::IndicesFromVec(d, hn::And(index, hn::Set(di, lanes - 1)));
-        auto value = hn::TableLookupLanes(table_[0], lane);
-        for (std::size_t v = 1; v < vectors_; ++v) {
-            const auto in_vector = hn::RebindMask(d, hn::Gt(index, hn::Set(di, std::int64_t(v) * lanes - 1)));
-            value = hn::IfThenElse(in_vector, hn::TableLookupLanes(table_[v], lane), value);
-        }
-        return value;
-    }
-
-private:
-    std::size_t vectors_;
-    hn::Vec<D> table_[max_vectors];
-};
+using small_table::HWY_NAMESPACE::SmallTable;  // the knot arrays are short
 
 /// out[i] = f(t[i]): MonotoneCubic::operator(), lane-wise. Lanes outside
 /// (x₀, x_n) take an end value; their segment is clamped too, so every read stays inside.
@@ -270,8 +239,6 @@ void ColourMapping::to_rgb_blocks(const std::array<const double*, 3>& kept, doub
                                   const Sigma0& sigma0, const RgbOutput& out, std::size_t first, std::size_t count) const
 {
     double z[colour_block], y[3][colour_block], z0[colour_block];
-    const double flat_basis[9] = {basis_[0][0], basis_[0][1], basis_[0][2], basis_[1][0], basis_[1][1],
-                                  basis_[1][2], basis_[2][0], basis_[2][1], basis_[2][2]};
     for (std::size_t start = 0; start < count; start += colour_block) {
         const std::size_t n = std::min(colour_block, count - start);
         for (int c = 0; c < 3; ++c) {
@@ -289,11 +256,17 @@ void ColourMapping::to_rgb_blocks(const std::array<const double*, 3>& kept, doub
                 condition(z0[i], sigma0(start + i), item);
                 y[1][i] = item[1], y[2][i] = item[2];
             }
-        const double* rows[3] = {y[0], y[1], y[2]};
-        float* channel[3];
-        for (int c = 0; c < 3; ++c) channel[c] = out.channel[c] + (first + start) * out.stride;
-        HWY_DYNAMIC_DISPATCH(colour_batch::ToRgb)(mean_.data(), flat_basis, rows, channel, out.stride, n);
+        combine({y[0], y[1], y[2]}, out, first + start, n);
     }
+}
+
+void ColourMapping::combine(const std::array<const double*, 3>& y, const RgbOutput& out, std::size_t first, std::size_t count) const
+{
+    const double flat_basis[9] = {basis_[0][0], basis_[0][1], basis_[0][2], basis_[1][0], basis_[1][1],
+                                  basis_[1][2], basis_[2][0], basis_[2][1], basis_[2][2]};
+    float* channel[3];
+    for (int c = 0; c < 3; ++c) channel[c] = out.channel[c] + first * out.stride;
+    HWY_DYNAMIC_DISPATCH(colour_batch::ToRgb)(mean_.data(), flat_basis, y.data(), channel, out.stride, count);
 }
 
 void ColourMapping::to_rgb(const std::array<const double*, 3>& kept, double gain,

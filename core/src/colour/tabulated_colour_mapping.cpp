@@ -67,19 +67,23 @@ void TabulatedColourMapping::to_rgb(const std::array<const double*, 3>& z, const
         for (int c = 0; c < 3; ++c) {
             const double* zc = z[c] + start;
             const double* sc = dropped_sigma[c] + start;
-            if (exact_.has_map(c)) {
-                const Table& t = tables_[c];
-                tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
+            if (!exact_.has_map(c)) {
+                for (std::size_t i = 0; i < n; ++i) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
+                continue;
             }
+            const Table& t = tables_[c];
+            tabulated_row::interpolate({t.values.data(), t.z0, 1 / step, t.columns, t.rows}, zc, sc, n, y[c]);
             // map_channel()'s cases outside the table, item by item.
             for (std::size_t i = 0; i < n; ++i)
-                if (!exact_.has_map(c) || sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
+                if (sc[i] < 1e-4 || !(sc[i] < sigma_max)) y[c][i] = exact_.map_channel(c, zc[i], sc[i]);
         }
-        for (std::size_t i = 0; i < n; ++i) {
-            std::array<double, 3> yi{y[0][i], y[1][i], y[2][i]};
-            exact_.condition(z[0][start + i], dropped_sigma[0][start + i], yi);
-            out.set(first + start + i, exact_.combine(yi));
-        }
+        if (exact_.conditions())
+            for (std::size_t i = 0; i < n; ++i) {
+                std::array<double, 3> yi{y[0][i], y[1][i], y[2][i]};
+                exact_.condition(z[0][start + i], dropped_sigma[0][start + i], yi);
+                y[1][i] = yi[1], y[2][i] = yi[2];
+            }
+        exact_.combine({y[0], y[1], y[2]}, out, first + start, n);
     }
 }
 

@@ -11,8 +11,7 @@ namespace {
 
 constexpr int record = PackedMomentPyramid::record;
 
-/// Pixels per pass of the address stage (its buffers hold taps × 3 tiles × this many lanes).
-constexpr std::size_t chunk = 64;
+using tiling_raster::chunk;  // pixels per pass of the address stage and the lookups
 
 }  // namespace
 
@@ -128,31 +127,32 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
         return;
     }
     const std::size_t lanes = (count + tiling_raster::max_lanes - 1) / tiling_raster::max_lanes * tiling_raster::max_lanes;
-    // Address-stage buffers, per tap and tile a run of `lanes`: offsets (row iy, row iy + 1, and
-    // the upper level's), fractions (x, y, upper x, upper y) and the weight.
+    // Address-stage buffers, per tap and tile a run of `chunk` per field (the first `lanes` used):
+    // offsets (row iy, row iy + 1, and the upper level's), fractions (x, y, upper x, upper y), the
+    // weight, the fractions' complements and the weight squared (tiling_raster::TapSums).
     const std::size_t runs = std::size_t(n_taps) * 3;
     ws.x_.resize(lanes);
-    ws.offsets_.resize(runs * 4 * lanes);
-    ws.fractions_.resize(runs * 5 * lanes);
-    auto offsets = [&](std::size_t run, int field) { return ws.offsets_.data() + (run * 4 + std::size_t(field)) * lanes; };
-    auto fractions = [&](std::size_t run, int field) { return ws.fractions_.data() + (run * 5 + std::size_t(field)) * lanes; };
+    ws.offsets_.resize(runs * 4 * chunk);
+    ws.fractions_.resize(runs * 10 * chunk);
+    auto offsets = [&](std::size_t run, int field) { return ws.offsets_.data() + (run * 4 + std::size_t(field)) * chunk; };
+    auto fractions = [&](std::size_t run, int field) { return ws.fractions_.data() + (run * 10 + std::size_t(field)) * chunk; };
     const TilingGrid& grid = noise_.grid();
     static const double two_over_sqrt3 = 2 / std::sqrt(3.0);
+    for (std::size_t l = 0; l < lanes; ++l) ws.x_[l] = x[std::min(l, count - 1)];  // padded with the last position
     for (int j = 0, k = 0; j < taps.nb; ++j)
         for (int i = 0; i < taps.na; ++i, ++k) {
             // This tap of every position: x + offset on the line py (TilingGrid::triangle's row).
-            for (std::size_t l = 0; l < lanes; ++l)
-                ws.x_[l] = x[std::min(l, count - 1)] + taps.along_a[std::size_t(i)][0] + taps.along_b[std::size_t(j)][0];
+            const double a = taps.along_a[std::size_t(i)][0], b = taps.along_b[std::size_t(j)][0];
             const double py = y + taps.along_a[std::size_t(i)][1] + taps.along_b[std::size_t(j)][1];
             tiling_raster::TapRow row{};
-            row.x = ws.x_.data(), row.n = lanes, row.y = py;
+            row.x = ws.x_.data(), row.n = lanes, row.a = a, row.b = b, row.y = py;
             row.sy = (py * grid.inverse_edges()[1]) * two_over_sqrt3;
             const double cy = floor_exact(row.sy);
             row.fy = row.sy - cy;
             row.inverse_edge_x = grid.inverse_edges()[0];
             // The vertex columns the positions' triangles use (x is monotone: the ends bound them).
-            const double c_first = floor_exact(ws.x_[0] * row.inverse_edge_x - 0.5 * row.sy);
-            const double c_last = floor_exact(ws.x_[count - 1] * row.inverse_edge_x - 0.5 * row.sy);
+            const double c_first = floor_exact((x[0] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
+            const double c_last = floor_exact((x[count - 1] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_min = std::min(c_first, c_last), c_max = std::max(c_first, c_last);
             const std::size_t columns = std::size_t(c_max - c_min) + 2;
             ws.rows_.resize(4 * columns);
@@ -164,7 +164,7 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
                     rows[std::size_t(2 * r) * columns + c] = t[0];
                     rows[std::size_t(2 * r + 1) * columns + c] = t[1];
                 }
-            row.i_min = c_min;
+            row.i_min = c_min, row.columns = columns;
             row.row0_x = rows, row.row0_y = rows + columns, row.row1_x = rows + 2 * columns, row.row1_y = rows + 3 * columns;
             row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
             tiling_raster::TileReads reads{};
@@ -175,6 +175,9 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
                 reads.fx[t] = fractions(run, 0), reads.fy[t] = fractions(run, 1);
                 reads.upper_fx[t] = fractions(run, 2), reads.upper_fy[t] = fractions(run, 3);
                 reads.weight[t] = fractions(run, 4);
+                reads.gx[t] = fractions(run, 5), reads.gy[t] = fractions(run, 6);
+                reads.upper_gx[t] = fractions(run, 7), reads.upper_gy[t] = fractions(run, 8);
+                reads.weight_squared[t] = fractions(run, 9);
             }
             tiling_raster::plan_tap_row(row, reads);
         }
@@ -182,7 +185,7 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
     tiling_raster::TapSums sums{};
     sums.lower = plan.lower->data, sums.upper = plan.upper ? plan.upper->data : nullptr, sums.t = plan.t;
     sums.taps = n_taps, sums.channels = Channels;
-    sums.offsets = ws.offsets_.data(), sums.fractions = ws.fractions_.data(), sums.lanes = lanes;
+    sums.offsets = ws.offsets_.data(), sums.fractions = ws.fractions_.data();
     sums.ratio = plan.ratio.data(), sums.scatter = plan.scatter.data(), sums.weight = plan.weight, sums.inverse_total = plan.inverse_total;
     tiling_raster::accumulate_taps(sums, count, out);
 }

@@ -5,10 +5,13 @@
 #define HWY_TARGET_INCLUDE "models/tiling/tiling_raster_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
-#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
+#include "numerics/small_table-inl.h"
+
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 #include "models/tiling/tiling_raster_kernels.h"
 
@@ -16,7 +19,10 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::tiling_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void PlanTapRow(const TapRow& row, const TileReads& out)
+/// PlanTapRow's loop, the row tables' entries read by `read(table, column)` (table 0–3: row0_x,
+/// row0_y, row1_x, row1_y).
+template <class Read>
+void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
 {
     const hn::ScalableTag<double> dd;
     const hn::RebindToSigned<decltype(dd)> di;
@@ -26,14 +32,18 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
     const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5), zero = hn::Zero(dd);
     const auto fy = hn::Set(dd, row.fy), y = hn::Set(dd, row.y), i_min = hn::Set(dd, row.i_min);
     const auto shift = hn::Mul(half, hn::Set(dd, row.sy)), inverse_edge = hn::Set(dd, row.inverse_edge_x);
-    const auto eight = hn::Set(dd, 8.0);
-    // One level's lookup of tile k at p, q: the two record offsets and the fractions.
+    const auto eight = hn::Set(dd, 8.0), a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
+    const auto one_f = hn::Set(df, 1.0f);
+    // One level's lookup of tile k at p, q: the two record offsets, the fractions and their complements.
     auto lookup = [&](const LevelGeometry& g, hn::Vec<decltype(dd)> p, hn::Vec<decltype(dd)> q, std::int32_t* o0, std::int32_t* o1,
-                      float* fx, float* fyo, std::size_t i) {
+                      float* fx, float* fyo, float* gx, float* gy, std::size_t i) {
         const auto lx = hn::Sub(hn::Mul(p, hn::Set(dd, g.scale_x)), half), ly = hn::Sub(hn::Mul(q, hn::Set(dd, g.scale_y)), half);
         const auto x0 = hn::Floor(lx), y0 = hn::Floor(ly);
-        hn::StoreU(hn::DemoteTo(df, hn::Sub(lx, x0)), df, fx + i);
-        hn::StoreU(hn::DemoteTo(df, hn::Sub(ly, y0)), df, fyo + i);
+        const auto tx = hn::DemoteTo(df, hn::Sub(lx, x0)), ty = hn::DemoteTo(df, hn::Sub(ly, y0));
+        hn::StoreU(tx, df, fx + i);
+        hn::StoreU(ty, df, fyo + i);
+        hn::StoreU(hn::Sub(one_f, tx), df, gx + i);
+        hn::StoreU(hn::Sub(one_f, ty), df, gy + i);
         const auto width = hn::Set(dd, g.width), height = hn::Set(dd, g.height);
         const auto ix = hn::Sub(x0, hn::Mul(width, hn::Floor(hn::Mul(x0, hn::Set(dd, g.inverse_width)))));
         const auto iy = hn::Sub(y0, hn::Mul(height, hn::Floor(hn::Mul(y0, hn::Set(dd, g.inverse_height)))));
@@ -44,7 +54,7 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
         hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(jy, records), ix), eight)), d32, o1 + i);
     };
     for (std::size_t i = 0; i < row.n; i += lanes) {
-        const auto x = hn::LoadU(dd, row.x + i);
+        const auto x = hn::Add(hn::Add(hn::LoadU(dd, row.x + i), a), b);
         const auto sx = hn::Sub(hn::Mul(x, inverse_edge), shift);
         const auto cx = hn::Floor(sx);
         const auto fx = hn::Sub(sx, cx);
@@ -58,74 +68,220 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
         // Translation columns c = cx − i_min and c + 1 in both vertex rows.
         const auto c = hn::ConvertTo(di, hn::Sub(cx, i_min));
         const auto c1 = hn::Add(c, hn::Set(di, 1));
-        const auto t0x = hn::IfThenElse(upper, hn::GatherIndex(dd, row.row1_x, c1), hn::GatherIndex(dd, row.row0_x, c));
-        const auto t0y = hn::IfThenElse(upper, hn::GatherIndex(dd, row.row1_y, c1), hn::GatherIndex(dd, row.row0_y, c));
-        const hn::Vec<decltype(dd)> tx[3] = {t0x, hn::GatherIndex(dd, row.row0_x, c1), hn::GatherIndex(dd, row.row1_x, c)};
-        const hn::Vec<decltype(dd)> ty[3] = {t0y, hn::GatherIndex(dd, row.row0_y, c1), hn::GatherIndex(dd, row.row1_y, c)};
+        const auto t0x = hn::IfThenElse(upper, read(2, c1), read(0, c));
+        const auto t0y = hn::IfThenElse(upper, read(3, c1), read(1, c));
+        const hn::Vec<decltype(dd)> tx[3] = {t0x, read(0, c1), read(2, c)};
+        const hn::Vec<decltype(dd)> ty[3] = {t0y, read(1, c1), read(3, c)};
         for (int k = 0; k < 3; ++k) {
-            hn::StoreU(hn::DemoteTo(df, weights[k]), df, out.weight[k] + i);
+            const auto w = hn::DemoteTo(df, weights[k]);
+            hn::StoreU(w, df, out.weight[k] + i);
+            hn::StoreU(hn::Mul(w, w), df, out.weight_squared[k] + i);
             const auto p = hn::Add(x, tx[k]), q = hn::Add(y, ty[k]);
-            lookup(row.lower, p, q, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], i);
-            if (row.has_upper) lookup(row.upper, p, q, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], i);
+            lookup(row.lower, p, q, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], out.gx[k], out.gy[k], i);
+            if (row.has_upper)
+                lookup(row.upper, p, q, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], out.upper_gx[k],
+                       out.upper_gy[k], i);
         }
     }
 }
 
-/// AccumulateTaps for a channel count and one or two levels known at compile time, so the
-/// mixture's loops unroll into registers (the same operations as with them at run time).
-template <int Channels, bool Upper>
+void PlanTapRow(const TapRow& row, const TileReads& out)
+{
+    // A row's tables span a few vertex columns (a 64-pixel chunk at 4 exemplar pixels per pixel:
+    // about 5): in registers, read by permutations, where they fit; else gathered.
+    const hn::ScalableTag<double> dd;
+    using Table = small_table::HWY_NAMESPACE::SmallTable<decltype(dd)>;
+    const double* tables[4] = {row.row0_x, row.row0_y, row.row1_x, row.row1_y};
+    if (Table::fits(dd, row.columns)) {
+        const Table small[4] = {{dd, tables[0], row.columns}, {dd, tables[1], row.columns}, {dd, tables[2], row.columns},
+                                {dd, tables[3], row.columns}};
+        PlanTapRowWith(row, out, [&](int table, auto column) { return small[table](dd, column); });
+    } else {
+        PlanTapRowWith(row, out, [&](int table, auto column) { return hn::GatherIndex(dd, tables[table], column); });
+    }
+}
+
+/// SetTableIndices' result for tag D (Highway 1.0 names no such type).
+template <class D>
+using IndicesOf = decltype(hn::SetTableIndices(D(), static_cast<const std::int32_t*>(nullptr)));
+
+/// Record lanes of one position per vector (AVX2, AVX-512): lane j is record lane j.
+template <int Channels>
+struct OneRecord {
+    using P = RecordPairs<Channels>;
+    using D = hn::CappedTag<float, 8>;
+    static constexpr std::size_t positions = 1;
+    D d;
+    hn::Mask<D> means = hn::FirstN(d, Channels), used = hn::FirstN(d, Channels + P::count);
+    IndicesOf<D> first, second;  ///< moment lane C + p reads delta[first p] · delta[second p]
+    OneRecord()
+    {
+        std::int32_t a[hn::MaxLanes(D())] = {}, b[hn::MaxLanes(D())] = {};
+        for (int p = 0; p < P::count; ++p) a[Channels + p] = P::first[p], b[Channels + p] = P::second[p];
+        first = hn::SetTableIndices(d, a), second = hn::SetTableIndices(d, b);
+    }
+    /// A field's value of the position at f.
+    hn::Vec<D> factor(const float* f) const { return hn::Set(d, f[0]); }
+    /// The texel row's two records (left, right) at the position's offset.
+    void texels(const float* data, const std::int32_t* offset, hn::Vec<D>* pair) const
+    {
+        pair[0] = hn::LoadU(d, data + offset[0]), pair[1] = hn::LoadU(d, data + offset[0] + 8);
+    }
+    void store(hn::Vec<D> v, float* out) const { hn::StoreU(v, d, out); }
+};
+
+#if HWY_TARGET != HWY_SCALAR  // (no Combine there; it holds one lane anyway)
+/// Two positions per vector where a vector holds two records (AVX-512), interleaved: lane
+/// 2j + q is record lane j of position q. The fields of positions l and l + 1 are adjacent, so
+/// a factor is one 8-byte broadcast; a texel row's records of both are interleaved by lane
+/// permutations (two-table ones on AVX-512: vpermt2ps), and de-interleaved by the store.
+template <int Channels>
+struct TwoRecords {
+    using P = RecordPairs<Channels>;
+    using D = hn::ScalableTag<float>;
+    static constexpr std::size_t positions = 2, lanes = hn::MaxLanes(D());
+    D d;
+    hn::Mask<D> means = hn::FirstN(d, 2 * Channels), used = hn::FirstN(d, 2 * (Channels + P::count));
+    IndicesOf<D> first, second, interleaved, deinterleaved;
+    hn::Vec<hn::RebindToSigned<D>> left, right;  ///< vpermt2ps's: 0–15 the first table, 16–31 the second
+    TwoRecords()
+    {
+        std::int32_t a[lanes], b[lanes], in[lanes], back[lanes], l[lanes], r[lanes];
+        for (std::size_t k = 0; k < lanes; ++k) {
+            const int j = int(k / 2), q = int(k % 2), pair = j - Channels;
+            const bool moment = pair >= 0 && pair < P::count;
+            a[k] = std::int32_t(moment ? 2 * P::first[std::max(pair, 0)] + q : q);
+            b[k] = std::int32_t(moment ? 2 * P::second[std::max(pair, 0)] + q : q);
+            in[k] = std::int32_t(q * 8 + j), back[k] = std::int32_t((k % 8) * 2 + k / 8);
+            l[k] = std::int32_t(q * 16 + j), r[k] = l[k] + 8;
+        }
+        first = hn::SetTableIndices(d, a), second = hn::SetTableIndices(d, b);
+        interleaved = hn::SetTableIndices(d, in), deinterleaved = hn::SetTableIndices(d, back);
+        const hn::RebindToSigned<D> di;
+        left = hn::LoadU(di, l), right = hn::LoadU(di, r);
+    }
+    hn::Vec<D> factor(const float* f) const
+    {
+        const hn::Repartition<std::uint64_t, D> du64;
+        std::uint64_t bits;
+        std::memcpy(&bits, f, sizeof bits);
+        return hn::BitCast(d, hn::Set(du64, bits));
+    }
+    void texels(const float* data, const std::int32_t* offset, hn::Vec<D>* pair) const
+    {
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+        const auto a = hn::LoadU(d, data + offset[0]), b = hn::LoadU(d, data + offset[1]);
+        pair[0] = hn::Vec<D>{_mm512_permutex2var_ps(a.raw, left.raw, b.raw)};
+        pair[1] = hn::Vec<D>{_mm512_permutex2var_ps(a.raw, right.raw, b.raw)};
+#else
+        const hn::Half<D> dh;
+        for (int side = 0; side < 2; ++side)
+            pair[side] = hn::TableLookupLanes(
+                hn::Combine(d, hn::LoadU(dh, data + offset[1] + side * 8), hn::LoadU(dh, data + offset[0] + side * 8)), interleaved);
+#endif
+    }
+    void store(hn::Vec<D> v, float* out) const { hn::StoreU(hn::TableLookupLanes(v, deinterleaved), d, out); }
+};
+#endif
+
+/// AccumulateTaps' lookups and mixture on whole-record vectors laid out by L (OneRecord,
+/// TwoRecords), for the positions from `first` on in steps of L::positions while a step fits;
+/// returns the first position left. Per tap, the three tiles' bilinear records weighted by w on
+/// the mean lanes and w² on the others (what w · (1 + w · 0) and w · (0 + w · 1) are, exactly);
+/// then the mixture, lane-wise: the mean lanes take result + ratio · delta, moment lane C + p
+/// takes result + (weight · m + scatter · delta[first p] · delta[second p]), the deltas brought to
+/// it by a lane lookup. The running means and moments are two registers, so that the next tap's
+/// deltas wait on the means' chain alone.
+template <bool Upper, int Taps, class L>
+std::size_t AccumulateVectors(const TapSums& s, std::size_t first, std::size_t count, float* out, const L& layout)
+{
+    const typename L::D d;
+    const int taps = Taps > 0 ? Taps : s.taps;
+    const auto level_t = hn::Set(d, s.t), tap_weight = hn::Set(d, s.weight), inverse_total = hn::Set(d, s.inverse_total);
+    std::size_t l = first;
+    for (; l + L::positions <= count; l += L::positions) {
+        auto means = hn::Zero(d), moments = hn::Zero(d);
+        for (int k = 0; k < taps; ++k) {
+            auto sum = hn::Zero(d);
+            for (int tile = 0; tile < 3; ++tile) {
+                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
+                const std::int32_t* offsets = s.offsets + run * 4 * chunk + l;
+                const float* fractions = s.fractions + run * 10 * chunk + l;
+                auto field = [&](int f) { return layout.factor(fractions + std::size_t(f) * chunk); };
+                auto bilinear = [&](const float* data, int row, int fraction) {
+                    hn::Vec<typename L::D> row0[2], row1[2];
+                    layout.texels(data, offsets + std::size_t(row) * chunk, row0);
+                    layout.texels(data, offsets + std::size_t(row + 1) * chunk, row1);
+                    const auto vx = field(fraction), vy = field(fraction + 1), sx = field(fraction + 5), sy = field(fraction + 6);
+                    const auto low = hn::Add(hn::Mul(sx, row0[0]), hn::Mul(vx, row0[1]));
+                    const auto high = hn::Add(hn::Mul(sx, row1[0]), hn::Mul(vx, row1[1]));
+                    return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
+                };
+                auto sample = bilinear(s.lower, 0, 0);
+                if (Upper) sample = hn::Add(sample, hn::Mul(level_t, hn::Sub(bilinear(s.upper, 2, 2), sample)));
+                sum = hn::Add(sum, hn::Mul(hn::IfThenElse(layout.means, field(4), field(9)), sample));
+            }
+            if (taps == 1) {
+                means = moments = sum;
+                break;
+            }
+            const auto delta = hn::Sub(sum, means);
+            const auto products = hn::Mul(hn::TableLookupLanes(delta, layout.first), hn::TableLookupLanes(delta, layout.second));
+            means = hn::Add(means, hn::Mul(hn::Set(d, s.ratio[k]), delta));
+            moments = hn::Add(moments, hn::Add(hn::Mul(tap_weight, sum), hn::Mul(hn::Set(d, s.scatter[k]), products)));
+        }
+        // Lanes past the kept moments stay 0, as in the scalar form.
+        const auto scaled = hn::IfThenElse(layout.means, means, taps == 1 ? moments : hn::Mul(moments, inverse_total));
+        layout.store(hn::IfThenElseZero(layout.used, scaled), out + l * 8);
+    }
+    return l;
+}
+
+/// AccumulateTaps for a channel count, one or two levels and (Taps > 0) a tap count known at
+/// compile time, so the loops unroll into registers and every field of a position is at a fixed
+/// distance from its first (the same operations as with them at run time).
+template <int Channels, bool Upper, int Taps>
 void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
 {
+    // No software prefetch of the records: an earlier version asked for the lines of the
+    // position three ahead from a lambda, which GCC 12 took for a function without effects and
+    // dropped (no prefetch instruction was ever emitted); written so that it is emitted, it made
+    // Render/Raster/colour 16 % slower (12 % with one line per record) — the hardware keeps up.
+    //
+    // A record in one vector (AVX2, AVX-512): the lookups and mixture run on vectors, two
+    // positions per vector where it holds two records; else on parts of a record and scalars.
+    if constexpr (!HWY_HAVE_SCALABLE && HWY_MAX_BYTES >= 32) {
+        std::size_t first = 0;
+#if HWY_TARGET != HWY_SCALAR
+        if constexpr (HWY_MAX_BYTES == 64) first = AccumulateVectors<Upper, Taps>(s, 0, count, out, TwoRecords<Channels>());
+#endif
+        AccumulateVectors<Upper, Taps>(s, first, count, out, OneRecord<Channels>());
+        return;
+    }
     using P = RecordPairs<Channels>;
     constexpr int record = 8;
     const hn::CappedTag<float, record> df;
     const int step = int(hn::Lanes(df)), parts = record / step;
-    float means[record] = {}, moments[record] = {};
-    for (int r = 0; r < record; ++r) (r < Channels ? means : moments)[r] = 1;
-    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * s.lanes; };
-    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 5 + std::size_t(field)) * s.lanes; };
+    const int taps = Taps > 0 ? Taps : s.taps;
+    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * chunk; };
+    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 10 + std::size_t(field)) * chunk; };
     const auto level_t = hn::Set(df, s.t);
-    // A record in one vector (AVX2, AVX-512): the mixture runs on vectors; else on scalars.
-    constexpr bool one_vector = !HWY_HAVE_SCALABLE && HWY_MAX_BYTES >= 32;
-    const auto mean_lanes = hn::FirstN(df, Channels), used_lanes = hn::FirstN(df, Channels + P::count);
-    const auto tap_weight = hn::Set(df, s.weight), inverse_total = hn::Set(df, s.inverse_total);
-    std::int32_t first_index[hn::MaxLanes(decltype(df)())] = {}, second_index[hn::MaxLanes(decltype(df)())] = {};
-    for (int p = 0; p < P::count && Channels + p < int(hn::MaxLanes(df)); ++p)
-        first_index[Channels + p] = P::first[p], second_index[Channels + p] = P::second[p];
-    const auto first_lanes = hn::SetTableIndices(df, first_index), second_lanes = hn::SetTableIndices(df, second_index);
-    // The records a position reads are spread over three tiles (and two levels), more streams
-    // than the hardware prefetchers follow; in the profile the hottest instruction was the one
-    // waiting on a record load. Their addresses are known a chunk ahead, so the lines of the
-    // position `ahead` of this one are requested now (a hint: no value changes).
-    constexpr std::size_t ahead = 3;
-    auto prefetch = [&](std::size_t l) {
-        for (int k = 0; k < s.taps; ++k)
-            for (int tile = 0; tile < 3; ++tile) {
-                const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                for (int field = 0; field < (Upper ? 4 : 2); ++field) {
-                    const float* r = (field < 2 ? s.lower : s.upper) + at_offsets(run, field)[l];
-                    hwy::Prefetch(r);
-                    hwy::Prefetch(r + 2 * record - 1);  // the pair may straddle two lines
-                }
-            }
-    };
-    for (std::size_t l = 0; l < std::min(ahead, count); ++l) prefetch(l);
+    hn::Mask<decltype(df)> part_means[record];  // the mean lanes of each part of a record
+    for (int h = 0; h < parts; ++h) part_means[h] = hn::FirstN(df, std::size_t(std::max(0, Channels - h * step)));
     for (std::size_t l = 0; l < count; ++l) {
-        if (l + ahead < count) prefetch(l + ahead);
         float result[record] = {};
-        auto mixed = hn::Zero(df);  // one_vector's result
-        for (int k = 0; k < s.taps; ++k) {
+        for (int k = 0; k < taps; ++k) {
             hn::Vec<decltype(df)> sum[record] = {};
             for (int h = 0; h < parts; ++h) sum[h] = hn::Zero(df);
             for (int tile = 0; tile < 3; ++tile) {
                 const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                const float w = at_fractions(run, 4)[l];
-                const auto vw = hn::Set(df, w);
+                // The tile's weights on the record: w on the mean lanes, w² on the others.
+                const auto vw = hn::Set(df, at_fractions(run, 4)[l]), vw2 = hn::Set(df, at_fractions(run, 9)[l]);
                 auto bilinear = [&](const float* data, int field, int fraction, int h) {
-                    const float tx = at_fractions(run, fraction)[l], ty = at_fractions(run, fraction + 1)[l];
                     const float* r0 = data + at_offsets(run, field)[l] + h * step;
                     const float* r1 = data + at_offsets(run, field + 1)[l] + h * step;
-                    const auto vx = hn::Set(df, tx), vy = hn::Set(df, ty), sx = hn::Set(df, 1 - tx), sy = hn::Set(df, 1 - ty);
+                    const auto vx = hn::Set(df, at_fractions(run, fraction)[l]), vy = hn::Set(df, at_fractions(run, fraction + 1)[l]);
+                    const auto sx = hn::Set(df, at_fractions(run, fraction + 5)[l]), sy = hn::Set(df, at_fractions(run, fraction + 6)[l]);
                     const auto low = hn::Add(hn::Mul(sx, hn::LoadU(df, r0)), hn::Mul(vx, hn::LoadU(df, r0 + record)));
                     const auto high = hn::Add(hn::Mul(sx, hn::LoadU(df, r1)), hn::Mul(vx, hn::LoadU(df, r1 + record)));
                     return hn::Add(hn::Mul(sy, low), hn::Mul(vy, high));
@@ -133,28 +289,13 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                 for (int h = 0; h < parts; ++h) {
                     auto sample = bilinear(s.lower, 0, 0, h);
                     if (Upper) sample = hn::Add(sample, hn::Mul(level_t, hn::Sub(bilinear(s.upper, 2, 2, h), sample)));
-                    const auto weights = hn::Mul(vw, hn::Add(hn::LoadU(df, means + h * step), hn::Mul(vw, hn::LoadU(df, moments + h * step))));
+                    const auto weights = hn::IfThenElse(part_means[h], vw, vw2);
                     sum[h] = hn::Add(sum[h], hn::Mul(weights, sample));
                 }
             }
-            if constexpr (one_vector) {
-                // The mixture below, lane-wise on the whole record: the mean lanes take
-                // result + ratio · delta, moment lane C + p takes result + (weight · m + scatter ·
-                // delta[first p] · delta[second p]), the deltas brought to it by a lane lookup.
-                if (s.taps == 1) {
-                    mixed = sum[0];
-                    break;
-                }
-                const auto delta = hn::Sub(sum[0], mixed);
-                const auto products = hn::Mul(hn::TableLookupLanes(delta, first_lanes), hn::TableLookupLanes(delta, second_lanes));
-                const auto next_means = hn::Add(mixed, hn::Mul(hn::Set(df, s.ratio[k]), delta));
-                const auto next_moments = hn::Add(mixed, hn::Add(hn::Mul(tap_weight, sum[0]), hn::Mul(hn::Set(df, s.scatter[k]), products)));
-                mixed = hn::IfThenElse(mean_lanes, next_means, next_moments);
-                continue;
-            }
             float m[record];
             for (int h = 0; h < parts; ++h) hn::StoreU(sum[h], df, m + h * step);
-            if (s.taps == 1) {
+            if (taps == 1) {
                 for (int r = 0; r < record; ++r) result[r] = m[r];
                 break;
             }
@@ -167,13 +308,19 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
                 result[Channels + p] += s.weight * m[Channels + p] + scatter * (delta[P::first[p]] * delta[P::second[p]]);
         }
         float* o = out + l * record;
-        if constexpr (one_vector) {
-            // Lanes past the kept moments stay 0, as in the scalar form.
-            const auto scaled = s.taps == 1 ? mixed : hn::IfThenElse(mean_lanes, mixed, hn::Mul(mixed, inverse_total));
-            hn::StoreU(hn::IfThenElseZero(used_lanes, scaled), df, o);
-            continue;
-        }
-        for (int r = 0; r < record; ++r) o[r] = s.taps == 1 || r < Channels ? result[r] : result[r] * s.inverse_total;
+        for (int r = 0; r < record; ++r) o[r] = taps == 1 || r < Channels ? result[r] : result[r] * s.inverse_total;
+    }
+}
+
+/// AccumulateTapsFor with the tap count of an isotropic footprint's default plan (2 × 2) or of
+/// a point (1) fixed, any other at run time.
+template <int Channels, bool Upper>
+void AccumulateTapsOf(const TapSums& s, std::size_t count, float* out)
+{
+    switch (s.taps) {
+    case 1: return AccumulateTapsFor<Channels, Upper, 1>(s, count, out);
+    case 4: return AccumulateTapsFor<Channels, Upper, 4>(s, count, out);
+    default: return AccumulateTapsFor<Channels, Upper, 0>(s, count, out);
     }
 }
 
@@ -181,9 +328,36 @@ void AccumulateTaps(const TapSums& s, std::size_t count, float* out)
 {
     const bool upper = s.upper != nullptr;
     switch (s.channels) {
-    case 1: return upper ? AccumulateTapsFor<1, true>(s, count, out) : AccumulateTapsFor<1, false>(s, count, out);
-    case 2: return upper ? AccumulateTapsFor<2, true>(s, count, out) : AccumulateTapsFor<2, false>(s, count, out);
-    default: return upper ? AccumulateTapsFor<3, true>(s, count, out) : AccumulateTapsFor<3, false>(s, count, out);
+    case 1: return upper ? AccumulateTapsOf<1, true>(s, count, out) : AccumulateTapsOf<1, false>(s, count, out);
+    case 2: return upper ? AccumulateTapsOf<2, true>(s, count, out) : AccumulateTapsOf<2, false>(s, count, out);
+    default: return upper ? AccumulateTapsOf<3, true>(s, count, out) : AccumulateTapsOf<3, false>(s, count, out);
+    }
+}
+
+void ColourInputs(const float* packed, std::size_t count, const double* mean, double* const* z, double* const* spread)
+{
+    const hn::ScalableTag<double> dd;
+    const hn::Rebind<float, decltype(dd)> df;
+    const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const std::size_t lanes = hn::Lanes(dd);
+    const auto zero = hn::Zero(dd);
+    for (std::size_t i = 0; i < count; i += lanes) {
+        // Lane k reads record i + k (the last one past count): its lanes gathered, planar.
+        std::int32_t first[hn::MaxLanes(decltype(dd)())];
+        for (std::size_t k = 0; k < lanes; ++k) first[k] = std::int32_t(std::min(i + k, count - 1) * 8);
+        const auto records = hn::LoadU(d32, first);
+        double zt[3][hn::MaxLanes(decltype(dd)())], st[3][hn::MaxLanes(decltype(dd)())];
+        const bool whole = i + lanes <= count;
+        for (int c = 0; c < 3; ++c) {
+            const auto m = hn::PromoteTo(dd, hn::GatherIndex(df, packed + c, records));
+            const auto v = hn::PromoteTo(dd, hn::GatherIndex(df, packed + 3 + c, records));
+            // std::max(0.0, v): v where 0 < v, else 0 (NaN and −0 included).
+            hn::StoreU(hn::Add(hn::Set(dd, mean[c]), m), dd, whole ? z[c] + i : zt[c]);
+            hn::StoreU(hn::Sqrt(hn::IfThenElse(hn::Gt(v, zero), v, zero)), dd, whole ? spread[c] + i : st[c]);
+        }
+        if (!whole)
+            for (int c = 0; c < 3; ++c)
+                for (std::size_t k = 0; i + k < count; ++k) z[c][i + k] = zt[c][k], spread[c][i + k] = st[c][k];
     }
 }
 
@@ -195,6 +369,12 @@ namespace stochtex::tiling_raster {
 
 HWY_EXPORT(PlanTapRow);
 HWY_EXPORT(AccumulateTaps);
+HWY_EXPORT(ColourInputs);
+
+void colour_inputs(const float* packed, std::size_t count, const double* mean, double* const* z, double* const* spread)
+{
+    HWY_DYNAMIC_DISPATCH(ColourInputs)(packed, count, mean, z, spread);
+}
 
 void accumulate_taps(const TapSums& sums, std::size_t count, float* out) { HWY_DYNAMIC_DISPATCH(AccumulateTaps)(sums, count, out); }
 

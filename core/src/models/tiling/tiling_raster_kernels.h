@@ -17,6 +17,8 @@ namespace stochtex::tiling_raster {
 
 /// Vectors hold at most this many doubles on any target (AVX-512: 8): inputs are padded to it.
 constexpr std::size_t max_lanes = 8;
+/// Positions per pass of the address stage and the lookups: the stride of their buffers' fields.
+constexpr std::size_t chunk = 64;
 
 /// The second moments a packed record keeps (lane Channels + p holds moment (first[p], second[p])):
 /// for 3 channels the variances only (what the colour output reads), for 1–2 all of them.
@@ -44,7 +46,7 @@ struct LevelGeometry {
 };
 
 /// One tap row. Triangle (TilingGrid::blend's geometry with reciprocals): sy = (y / edge_y) ·
-/// 2/√3 and fy = sy − floor(sy) are the row's; per position sx = x · (1/edge_x) − ½ sy,
+/// 2/√3 and fy = sy − floor(sy) are the row's; per tap position x sx = x · (1/edge_x) − ½ sy,
 /// cx = floor(sx), fx = sx − cx; below the diagonal (fx + fy < 1) the vertices are (cx, j),
 /// (cx + 1, j), (cx, j + 1) with B = (1 − fx − fy, fx, fy), else (cx + 1, j + 1), (cx + 1, j),
 /// (cx, j + 1) with B = (fx + fy − 1, 1 − fy, 1 − fx); w = B · (1 / √(B·B)).
@@ -54,10 +56,12 @@ struct LevelGeometry {
 /// x0 = floor(lx), fx = float(lx − x0), ix = x0 − width · floor(x0 / width), likewise y; the
 /// records read are at (iy · row + ix) · 8 and ((iy + 1 mod height) · row + ix) · 8 floats.
 struct TapRow {
-    const double* x;  ///< n positions (n a multiple of max_lanes)
+    const double* x;  ///< n pixel positions (n a multiple of max_lanes); the tap's are (x + a) + b
     std::size_t n;
+    double a, b;      ///< the tap's offset along the footprint's axes (x components)
     double y, sy, fy, inverse_edge_x;
     double i_min;
+    std::size_t columns;  ///< entries of each row table
     const double* row0_x;
     const double* row0_y;
     const double* row1_x;
@@ -67,7 +71,8 @@ struct TapRow {
 };
 
 /// Where tile k (0–2) of position i reads: at lower (and upper) level, the record offsets of
-/// the texel pair of rows iy and iy + 1, and the fractions; w its blend weight.
+/// the texel pair of rows iy and iy + 1, the fractions f and their complements 1 − f (in
+/// float, as the lookup uses them); w its blend weight (float) and w · w.
 struct TileReads {
     std::int32_t* offset0[3];
     std::int32_t* offset1[3];
@@ -78,14 +83,20 @@ struct TileReads {
     float* upper_fx[3];
     float* upper_fy[3];
     float* weight[3];
+    float* gx[3];  ///< 1 − fx, and so on
+    float* gy[3];
+    float* upper_gx[3];
+    float* upper_gy[3];
+    float* weight_squared[3];
 };
 
 void plan_tap_row(const TapRow& row, const TileReads& out);
 
 /// The lookups and the mixture of `count` positions from plan_tap_row's reads, stored as
-/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `lanes` values per
-/// field, offsets at offsets + (4 r + f) · lanes (f: lower row iy, lower row iy + 1, upper, upper),
-/// fractions at fractions + (5 r + f) · lanes (f: lower x, lower y, upper x, upper y, weight).
+/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `chunk` values per
+/// field, offsets at offsets + (4 r + f) · chunk (f: lower row iy, lower row iy + 1, upper, upper),
+/// fractions at fractions + (10 r + f) · chunk (f: lower x, lower y, upper x, upper y, weight,
+/// then the four fractions' complements and the weight squared).
 /// Per position and tap, the three tiles' bilinear records (8 floats: lane-wise, in
 /// vectors of up to 8), blended towards the upper level by t, are summed as w · (means + w ·
 /// moments) · record (`means` 1 on the mean lanes, 0 on the moment lanes); the taps then
@@ -98,11 +109,15 @@ struct TapSums {
     int taps, channels;  ///< the record's moment lanes: RecordPairs<channels>
     const std::int32_t* offsets;
     const float* fractions;
-    std::size_t lanes;
     const float* ratio;
     const float* scatter;
     float weight, inverse_total;
 };
 void accumulate_taps(const TapSums& sums, std::size_t count, float* out);
+
+/// The colour output's inputs from `count` packed 3-channel records (8 floats each: centred
+/// means, then the variances), planar: z[c][i] = mean[c] + double(mean lane c), spread[c][i] =
+/// √max(0, double(variance lane c)) — TilingTexture::colour()'s operations, lane-wise.
+void colour_inputs(const float* packed, std::size_t count, const double* mean, double* const* z, double* const* spread);
 
 }  // namespace stochtex::tiling_raster

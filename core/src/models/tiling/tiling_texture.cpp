@@ -182,13 +182,7 @@ void TilingTexture::colour_row(const float* packed, std::size_t count, const Rgb
     cache.channels.resize(6 * count);
     std::array<double*, 3> z{}, spread{};
     for (int c = 0; c < 3; ++c) z[c] = cache.channels.data() + std::size_t(c) * count, spread[c] = z[c] + 3 * count;
-    for (std::size_t i = 0; i < count; ++i) {
-        const float* p = packed + i * record;
-        for (int c = 0; c < 3; ++c) {
-            z[c][i] = global.mean[std::size_t(c)] + double(p[c]);
-            spread[c][i] = std::sqrt(std::max(0.0, double(p[3 + c])));
-        }
-    }
+    tiling_raster::colour_inputs(packed, count, global.mean.data(), z.data(), spread.data());
     colour_mapping_->to_rgb({z[0], z[1], z[2]}, {spread[0], spread[1], spread[2]}, count, out, first);
 }
 
