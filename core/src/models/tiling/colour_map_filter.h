@@ -12,7 +12,8 @@
 //   reference   — as in the authors' code: per axis the level round(log2(1 + σ_texels)), one
 //                 bilinear fetch, the a–b covariance ignored;
 //   interpolated — the fractional level 1 + log2 σ (σ in texels; σ itself below 1 texel)
-//                 on each axis, blended linearly between the neighbouring levels (4 fetches);
+//                 on each axis, blended linearly between the neighbouring levels (on a
+//                 triangle of the level square: up to 3 fetches);
 //   covariance  — interpolated, plus the covariance: Σ = diag(d) + u uᵀ with u along the
 //                 correlation (the largest axis-aligned part d that leaves a rank-one rest), the
 //                 diag(d) blur from the table and the rank-one part by Gauss–Hermite quadrature
@@ -59,26 +60,38 @@ private:
         std::vector<float> rgb;
     };
     Rgb fetch(int level_a, int level_b, double a, double b) const;
-    /// Linear blend of the four (floor, ceil) level pairs around fractional levels.
+    /// The table level pairs around fractional levels and their weights: linear interpolation
+    /// on the triangle of the level square that holds (level_a, level_b) — three tables, where
+    /// a bilinear blend of the four corners reads four — the zero-weight ones dropped.
+    struct LevelBlend {
+        int count = 0;
+        std::array<int, 3> level_a{}, level_b{};
+        std::array<double, 3> weight{};
+    };
+    LevelBlend level_blend(double level_a, double level_b) const;
+    /// The blend of level_blend()'s tables at one position.
     Rgb fetch_fractional(double level_a, double level_b, double a, double b) const;
     /// fetch_fractional() with its levels resolved once, for many positions.
     class Fractional {
     public:
-        Fractional(const ColourMapFilter& filter, double level_a, double level_b);
+        Fractional(const ColourMapFilter& filter, double level_a, double level_b)
+            : filter_(filter), blend_(filter.level_blend(level_a, level_b)) {}
         Rgb fetch(double a, double b) const;
 
     private:
         const ColourMapFilter& filter_;
-        int ia_, ib_, ja_, jb_;
-        double ta_, tb_;
+        LevelBlend blend_;
     };
-    double fractional_level(double sigma) const;
+    /// The fractional blur level of a variance (texels²).
+    double fractional_level(double variance) const;
     /// The covariance method's rank-one line: Σ = diag(d) + u uᵀ, the table levels of diag(d),
-    /// u in texels and the node count (filtered() and lookup() share it).
+    /// u in texels and the quadrature rule along it (filtered() and lookup() share it).
     struct Line {
         double a, b;            ///< the clamped mean
         double level_a, level_b;  ///< fractional levels of the axis-aligned part
         double alpha = 0, beta = 0;  ///< u (texels); 0 when no covariance is resolved
+        const double* node = nullptr;    ///< t_k: the nodes a + t_k α, b + t_k β (texels)
+        const double* weight = nullptr;  ///< w_k, summing to 1
         int count = 1;
     };
     /// Line of the interpolated / covariance methods (method ≠ reference).
