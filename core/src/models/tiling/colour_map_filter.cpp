@@ -14,15 +14,18 @@ namespace {
 
 /// A quadrature rule for E[f(t)], t ~ 𝒩(0, 1): nodes t_k and weights w_k summing to 1, stored
 /// with colour_map_kernels::node_padding entries more (the last node, weight 0) so that the line
-/// kernel reads whole vectors of them.
+/// kernel reads whole vectors of them, and in single precision for the kernel.
 struct LineRule {
     std::vector<double> node, weight;
+    std::vector<float> node_float, weight_float;  // the kernel's copies
     int count = 0;
     void pad()
     {
         count = int(node.size());
         node.resize(node.size() + colour_map_kernels::node_padding, node.back());
         weight.resize(weight.size() + colour_map_kernels::node_padding, 0.0);
+        node_float.assign(node.begin(), node.end());
+        weight_float.assign(weight.begin(), weight.end());
     }
 };
 
@@ -322,6 +325,7 @@ ColourMapFilter::Line ColourMapFilter::line(double mean_a, double mean_b, const 
                                ? line_rule(std::max(3, int(std::ceil(std::sqrt(nodes2))) | 1))
                                : equal_weight_line_rule();
     line.node = rule.node.data(), line.weight = rule.weight.data(), line.count = rule.count;
+    line.node_float = rule.node_float.data(), line.weight_float = rule.weight_float.data();
     return line;
 }
 
@@ -432,7 +436,7 @@ Rgb ColourMapFilter::lookup(double mean_a, double mean_b, const PairCovariance& 
     colour_map_kernels::LineNodes nodes{};
     nodes.tables = tables, nodes.table_count = levels.kernel_tables(tables);
     nodes.a = l.a, nodes.b = l.b, nodes.step_a = l.alpha / size_, nodes.step_b = l.beta / size_;
-    nodes.node = l.node, nodes.weight = l.weight, nodes.count = l.count;
+    nodes.node = l.node_float, nodes.weight = l.weight_float, nodes.count = l.count;
     float sum[3];
     colour_map_kernels::line_sum(nodes, sum);
     return {sum[0], sum[1], sum[2]};

@@ -92,6 +92,7 @@ private:
         double alpha = 0, beta = 0;  ///< u (texels); 0 when no covariance is resolved
         const double* node = nullptr;    ///< t_k: the nodes a + t_k α, b + t_k β (texels)
         const double* weight = nullptr;  ///< w_k, summing to 1
+        const float* node_float = nullptr, * weight_float = nullptr;  ///< the same in single precision
         int count = 1;
     };
     /// Line of the interpolated / covariance methods (method ≠ reference).

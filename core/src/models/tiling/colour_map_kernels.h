@@ -1,10 +1,10 @@
 // The covariance lookup's line quadrature (ColourMapFilter::lookup) with Highway
-// (colour_map_kernels.cpp, dispatched to the CPU's best instruction set): first every node's
-// texel offsets in each table and its four bilinear corner weights — node weight × level-blend
-// weight × bilinear fractions, in single precision — vectorised across the nodes, and a prefetch
-// of all the rows they read (a line crosses ~one map row per node: requested together, the loads
-// overlap instead of waiting one by one); then node by node the corners on RGB vectors of four
-// floats (one load per texel; a gather per channel measured slower), summed in node order.
+// (colour_map_kernels.cpp, dispatched to the CPU's best instruction set), in single precision:
+// first every node's texel offsets in each table and its four bilinear corner weights (node
+// weight × level-blend weight × bilinear fractions), vectorised across the nodes; then node by
+// node the corners on RGB vectors of four floats (one load per texel; a gather per channel
+// measured slower), summed in node order. (A prefetch of every row the nodes read paid while
+// lines had up to 63 nodes; with at most 21 it cost 2–5 %.)
 //
 // Lane-wise IEEE operations only, in a fixed order (no fused multiply-add: the core builds with
 // -ffp-contract=off), so the values are the same bits on every target
@@ -29,12 +29,12 @@ struct LineNodes {
     const Table* tables;
     int table_count;     ///< 1–4
     double a, b, step_a, step_b;
-    const double* node;  ///< t_k, readable up to count + node_padding
-    const double* weight;  ///< w_k, readable up to count + node_padding
+    const float* node;   ///< t_k, readable up to count + node_padding
+    const float* weight;  ///< w_k, readable up to count + node_padding
     int count;           ///< ≤ max_nodes
 };
 constexpr int max_nodes = 64;
-/// Entries readable past the last node (a whole vector of doubles on any target).
+/// Entries readable past the last node (a whole vector of floats on any target).
 constexpr int node_padding = 16;
 
 /// rgb = Σ_k Σ_m Σ_corners c · texel in node order, c = float(w_k) · weight_m · the bilinear
