@@ -16,8 +16,9 @@
 //                 triangle of the level square: up to 3 fetches);
 //   covariance  — interpolated, plus the covariance: Σ = diag(d) + u uᵀ with u along the
 //                 correlation (the largest axis-aligned part d that leaves a rank-one rest), the
-//                 diag(d) blur from the table and the rank-one part by Gauss–Hermite quadrature
-//                 along u. Exact for any S whenever the table's blurs are.
+//                 diag(d) blur from the table and the rank-one part by quadrature along u
+//                 (uniform, Gauss–Hermite or equal-weight nodes: line()). Exact for any S
+//                 whenever the table's blurs are and the nodes resolve them.
 #pragma once
 
 #include <stochtex/texture.h>
@@ -45,11 +46,11 @@ public:
     Rgb point(double a, double b) const { return fetch(0, 0, a, b); }
     /// The reference implementation (double-precision fetches, one per blur-level pair).
     Rgb filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
-    /// filtered() as the texture evaluates it: the same nodes, levels and weights, each node's
-    /// (up to four) blurred tables read as RGB vectors of four floats and blended in single
-    /// precision with the level weights folded into the bilinear weights, the nodes' addresses
-    /// computed across the nodes (colour_map_kernels.h). Within ~1e-6 of
-    /// filtered() (tests/raster_paths_test.cpp measures the colour-map output against it).
+    /// filtered() as the texture evaluates it: the same nodes, levels and weights, in single
+    /// precision, each node's (up to three) blurred tables read as RGB vectors of four floats with
+    /// the node and level weights folded into the bilinear weights, the nodes' addresses computed
+    /// across the nodes (colour_map_kernels.h). Within ~1e-5 of filtered()
+    /// (tests/raster_paths_test.cpp measures the colour-map output against it).
     Rgb lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
     /// E[S(N)] by brute-force quadrature over the unblurred map (a test oracle; slow).
     Rgb expected(double mean_a, double mean_b, const PairCovariance& covariance) const;
@@ -97,7 +98,7 @@ private:
     };
     /// Line of the interpolated / covariance methods (method ≠ reference).
     Line line(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
-    /// The up-to-four tables of a fractional level pair with their weights, resolved once.
+    /// The up-to-three tables of a fractional level pair with their weights, resolved once.
     class Packed;
 
     int size_;
