@@ -322,9 +322,13 @@ ColourMapFilter::Line ColourMapFilter::line(double mean_a, double mean_b, const 
     const double d_a = std::max(0.0, var_a - alpha2), d_b = std::max(0.0, var_b - beta2);
     line.level_a = fractional_level(d_a), line.level_b = fractional_level(d_b);
     // The blur along u is at least √min d: nodes up to spacing_blurs × that (or a texel) apart.
+    // Beyond equal_weight_nodes, a table blurred by a texel or more (the integrand smooth at the
+    // nodes' spacing, where uniform nodes integrate better than equal weights' sparse tails)
+    // keeps up to 63 uniform ones, as before the equal-weight rule; a sharper one takes that rule.
     const double nodes2 = 64 * (alpha2 + beta2) / std::max(1.0, spacing_blurs * spacing_blurs * std::min(d_a, d_b));
-    const LineRule& rule = nodes2 <= double(equal_weight_nodes * equal_weight_nodes)
-                               ? line_rule(std::max(3, int(std::ceil(std::sqrt(nodes2))) | 1))
+    const bool blurred = std::min(d_a, d_b) >= 1;
+    const LineRule& rule = nodes2 <= double(equal_weight_nodes * equal_weight_nodes) || blurred
+                               ? line_rule(std::min(63, std::max(3, int(std::ceil(std::sqrt(nodes2))) | 1)))
                                : equal_weight_line_rule();
     line.node = rule.node.data(), line.weight = rule.weight.data(), line.count = rule.count;
     line.node_float = rule.node_float.data(), line.weight_float = rule.weight_float.data();
