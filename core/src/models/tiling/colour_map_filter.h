@@ -12,11 +12,13 @@
 //   reference   — as in the authors' code: per axis the level round(log2(1 + σ_texels)), one
 //                 bilinear fetch, the a–b covariance ignored;
 //   interpolated — the fractional level 1 + log2 σ (σ in texels; σ itself below 1 texel)
-//                 on each axis, blended linearly between the neighbouring levels (4 fetches);
+//                 on each axis, blended linearly between the neighbouring levels (on a
+//                 triangle of the level square: up to 3 fetches);
 //   covariance  — interpolated, plus the covariance: Σ = diag(d) + u uᵀ with u along the
 //                 correlation (the largest axis-aligned part d that leaves a rank-one rest), the
-//                 diag(d) blur from the table and the rank-one part by Gauss–Hermite quadrature
-//                 along u. Exact for any S whenever the table's blurs are.
+//                 diag(d) blur from the table and the rank-one part by quadrature along u
+//                 (uniform, Gauss–Hermite or equal-weight nodes: line()). Exact for any S
+//                 whenever the table's blurs are and the nodes resolve them.
 #pragma once
 
 #include <stochtex/texture.h>
@@ -44,11 +46,11 @@ public:
     Rgb point(double a, double b) const { return fetch(0, 0, a, b); }
     /// The reference implementation (double-precision fetches, one per blur-level pair).
     Rgb filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
-    /// filtered() as the texture evaluates it: the same nodes, levels and weights, each node's
-    /// (up to four) blurred tables read as RGB vectors of four floats and blended in single
-    /// precision with the level weights folded into the bilinear weights, the nodes' addresses
-    /// computed across the nodes (colour_map_kernels.h). Within ~1e-6 of
-    /// filtered() (tests/raster_paths_test.cpp measures the colour-map output against it).
+    /// filtered() as the texture evaluates it: the same nodes, levels and weights, in single
+    /// precision, each node's (up to three) blurred tables read as RGB vectors of four floats with
+    /// the node and level weights folded into the bilinear weights, the nodes' addresses computed
+    /// across the nodes (colour_map_kernels.h). Within ~1e-5 of filtered()
+    /// (tests/raster_paths_test.cpp measures the colour-map output against it).
     Rgb lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
     /// E[S(N)] by brute-force quadrature over the unblurred map (a test oracle; slow).
     Rgb expected(double mean_a, double mean_b, const PairCovariance& covariance) const;
@@ -59,31 +61,44 @@ private:
         std::vector<float> rgb;
     };
     Rgb fetch(int level_a, int level_b, double a, double b) const;
-    /// Linear blend of the four (floor, ceil) level pairs around fractional levels.
+    /// The table level pairs around fractional levels and their weights: linear interpolation
+    /// on the triangle of the level square that holds (level_a, level_b) — three tables, where
+    /// a bilinear blend of the four corners reads four — the zero-weight ones dropped.
+    struct LevelBlend {
+        int count = 0;
+        std::array<int, 3> level_a{}, level_b{};
+        std::array<double, 3> weight{};
+    };
+    LevelBlend level_blend(double level_a, double level_b) const;
+    /// The blend of level_blend()'s tables at one position.
     Rgb fetch_fractional(double level_a, double level_b, double a, double b) const;
     /// fetch_fractional() with its levels resolved once, for many positions.
     class Fractional {
     public:
-        Fractional(const ColourMapFilter& filter, double level_a, double level_b);
+        Fractional(const ColourMapFilter& filter, double level_a, double level_b)
+            : filter_(filter), blend_(filter.level_blend(level_a, level_b)) {}
         Rgb fetch(double a, double b) const;
 
     private:
         const ColourMapFilter& filter_;
-        int ia_, ib_, ja_, jb_;
-        double ta_, tb_;
+        LevelBlend blend_;
     };
-    double fractional_level(double sigma) const;
+    /// The fractional blur level of a variance (texels²).
+    double fractional_level(double variance) const;
     /// The covariance method's rank-one line: Σ = diag(d) + u uᵀ, the table levels of diag(d),
-    /// u in texels and the node count (filtered() and lookup() share it).
+    /// u in texels and the quadrature rule along it (filtered() and lookup() share it).
     struct Line {
         double a, b;            ///< the clamped mean
         double level_a, level_b;  ///< fractional levels of the axis-aligned part
         double alpha = 0, beta = 0;  ///< u (texels); 0 when no covariance is resolved
+        const double* node = nullptr;    ///< t_k: the nodes a + t_k α, b + t_k β (texels)
+        const double* weight = nullptr;  ///< w_k, summing to 1
+        const float* node_float = nullptr, * weight_float = nullptr;  ///< the same in single precision
         int count = 1;
     };
     /// Line of the interpolated / covariance methods (method ≠ reference).
     Line line(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const;
-    /// The up-to-four tables of a fractional level pair with their weights, resolved once.
+    /// The up-to-three tables of a fractional level pair with their weights, resolved once.
     class Packed;
 
     int size_;

@@ -1,13 +1,14 @@
 // The covariance lookup's line quadrature (ColourMapFilter::lookup) with Highway
-// (colour_map_kernels.cpp, dispatched to the CPU's best instruction set): first every node's
-// texel offsets and fractions in each table, vectorised across the nodes, and a prefetch of all
-// the rows they read (a line crosses ~one map row per node: requested together, the loads
-// overlap instead of waiting one by one); then node by node the bilinear fetches on RGB vectors
-// of four floats (one load per texel; a gather per channel measured slower), summed in node order.
+// (colour_map_kernels.cpp, dispatched to the CPU's best instruction set), in single precision:
+// first every node's texel offsets in each table and its four bilinear corner weights (node
+// weight × level-blend weight × bilinear fractions), vectorised across the nodes; then node by
+// node the corners on RGB vectors of four floats (one load per texel; a gather per channel
+// measured slower), summed in node order. (A prefetch of every row the nodes read paid while
+// lines had up to 63 nodes; with at most 31 it cost 4–9 %.)
 //
-// Both passes perform the IEEE operations of ColourMapFilter::Packed::fetch and of the sum, in
-// their order (no fused multiply-add: the core builds with -ffp-contract=off), so the values are
-// the scalar code's bits on every target (RasterPaths.TilingGivesTheSameBitsOnEveryInstructionSet).
+// Lane-wise IEEE operations only, in a fixed order (no fused multiply-add: the core builds with
+// -ffp-contract=off), so the values are the same bits on every target
+// (RasterPaths.TilingGivesTheSameBitsOnEveryInstructionSet).
 #pragma once
 
 #include <cstddef>
@@ -28,13 +29,16 @@ struct LineNodes {
     const Table* tables;
     int table_count;     ///< 1–4
     double a, b, step_a, step_b;
-    const double* node;  ///< t_k
-    const double* weight;  ///< w_k (summed as float(w_k) · colour_k)
+    const float* node;   ///< t_k, readable up to count + node_padding
+    const float* weight;  ///< w_k, readable up to count + node_padding
     int count;           ///< ≤ max_nodes
 };
 constexpr int max_nodes = 64;
+/// Entries readable past the last node (a whole vector of floats on any target).
+constexpr int node_padding = 16;
 
-/// rgb = Σ_k float(w_k) · S_k in node order, S_k the tables' blended bilinear fetch at node k.
+/// rgb = Σ_k Σ_m Σ_corners c · texel in node order, c = float(w_k) · weight_m · the bilinear
+/// weight of the corner at node k in table m.
 void line_sum(const LineNodes& line, float* rgb);
 
 }  // namespace stochtex::colour_map_kernels
