@@ -50,7 +50,13 @@ inline double position_fraction(std::uint64_t bits) { return (std::int32_t(bits 
 /// Attribute word layout: channel phases in bits 0–29, azimuth index in 30–39, cos(colatitude) in 40–63.
 inline int phase_index(std::uint64_t attributes, int channel) { return int((attributes >> (phase_bits * channel)) & (phase_count - 1)); }
 
-inline std::int64_t floor_index(double x) { return std::int64_t(std::floor(x)); }
+/// floor(x) as an integer, for |x| < 2^63: truncation, one less below zero off the integers
+/// (std::floor is a library call on baseline x86-64, a few of them per row of cells).
+inline std::int64_t floor_index(double x)
+{
+    const std::int64_t t = std::int64_t(x);
+    return t - std::int64_t(x < double(t));
+}
 
 /// P(χ² with 3 degrees of freedom ≤ x): the energy fraction of a 3D Gaussian inside a sphere.
 double chi_square_3_cdf(double x)
