@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace stochtex {
 
@@ -96,7 +97,11 @@ GaborTexture::GaborTexture(const TextureDescription& description, const Vec2* pe
                 continue;
             }
         }
-        octaves_.push_back({GaborNoise(parameters), weight});
+        GaborNoise noise(parameters);  // validates the octave, whatever its weights
+        // An octave of weight 0 in every channel adds exact zeros to the sums (which start at
+        // +0, so stay unchanged) and nothing to the dropped variance: not evaluated at all.
+        if (weight[0] == 0 && weight[1] == 0 && weight[2] == 0) continue;
+        octaves_.push_back({std::move(noise), weight});
     }
 }
 
