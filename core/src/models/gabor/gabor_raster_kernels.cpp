@@ -163,6 +163,13 @@ void CellImpulses::clear()
     for (int c = 0; c < 3; ++c) cos_phase[c].clear(), sin_phase[c].clear();
 }
 
+void CellImpulses::resize(std::size_t n)
+{
+    for (std::vector<double>* v : {&x, &y, &z}) v->resize(n);
+    for (std::vector<float>* v : {&wx, &wy, &wz, &log_amplitude}) v->resize(n);
+    for (int c = 0; c < 3; ++c) cos_phase[c].resize(n), sin_phase[c].resize(n);
+}
+
 void sum_row(const RowInput& input, const double* x, std::size_t count, float* const out[3])
 {
     HWY_DYNAMIC_DISPATCH(SumRow)(input, x, count, out);

@@ -28,6 +28,8 @@ struct CellImpulses {
 
     std::size_t size() const { return x.size(); }
     void clear();
+    /// Every array to n impulses (kept ones unchanged, new ones to be written).
+    void resize(std::size_t n);
 };
 
 /// Cells [first, first + count) of a CellImpulses are one row of cells along x, the first with
