@@ -265,8 +265,10 @@ struct GridScratch {
     gabor_raster::CellImpulses cells;
     std::vector<gabor_raster::CellRow> block_rows, rows;
     std::vector<std::int64_t> row_j, row_k;
-    std::vector<std::uint64_t> key;  // a single point's candidate cells
-    std::vector<Vec3> position;
+    // A single point's kept candidate cells: keys, impulse positions; solid, its rows of cells.
+    std::vector<std::uint64_t> key;
+    std::vector<double> cx, cy, cz;
+    std::vector<gabor_raster::CandidateRow> candidate_rows;
 };
 
 GridScratch& grid_scratch()
@@ -372,22 +374,18 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
     const bool single = nx == 1 && ny == 1;
     GridScratch& candidates = grid_scratch();
     std::size_t kept = 0;
-    auto test_cell = [&](std::uint64_t key, std::int64_t i, std::int64_t j, std::int64_t k) {
-        const std::uint64_t bits = mix64(key);
+    // 2D: tested here; solid: rows collected, tested together by vectors of cells
+    // (gabor_raster::test_candidates: the same operations, lane-wise).
+    auto test_cell_2d = [&](std::int64_t i, std::int64_t j) {
+        const std::uint64_t key = cell_key_2d(i, j), bits = mix64(key);
         const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
-        const double cz = Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0;
-        const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
-        // Solid: dᵀMd, M = n nᵀ + T A⁻¹ Tᵀ the support's matrix: (n·d)² + (t·d, b·d) A⁻¹ (t·d, b·d)ᵀ
-        // in half the operations. q only has to be right to far less than the margin: kept
-        // octaves have det A ≤ 32², so A⁻¹ a condition number ≤ 1024 and q an error ~1e-13.
-        const double (&m)[3][3] = support.m;
-        const double q = Solid ? m[0][0] * d[0] * d[0] + m[1][1] * d[1] * d[1] + m[2][2] * d[2] * d[2] +
-                                     2 * (m[0][1] * d[0] * d[1] + m[0][2] * d[0] * d[2] + m[1][2] * d[1] * d[2])
-                               : inverse.quadratic_form(d[0], d[1]);
+        const double q = inverse.quadratic_form(x[0] - cx, y[0] - cy);
         candidates.key[kept] = key;
-        candidates.position[kept] = {cx, cy, cz};
+        candidates.cx[kept] = cx, candidates.cy[kept] = cy, candidates.cz[kept] = 0.0;
         kept += q <= reach2;
     };
+    std::size_t candidate_count = 0;
+    if (single) candidates.candidate_rows.clear();
     // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
     // Written at index m of cells already sized (CellImpulses::resize): no growth checks per array.
     auto set_impulse = [&](std::size_t m, std::uint64_t key, double cx, double cy, double cz) {
@@ -438,17 +436,13 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                     if (!row_span(j, k, y_lo, y_hi, span)) continue;
                     const std::int64_t i0 = floor_index((x_lo + span.lo) * inverse_sx), i1 = floor_index((x_hi + span.hi) * inverse_sx);
                     if (single) {  // one list of the kept cells, below
-                        if (candidates.key.size() < kept + std::size_t(i1 - i0 + 1)) {
-                            candidates.key.resize(2 * (kept + std::size_t(i1 - i0 + 1)));
-                            candidates.position.resize(candidates.key.size());
+                        candidate_count += std::size_t(i1 - i0 + 1);
+                        if (candidates.key.size() < candidate_count + 64) {  // (+ a vector: test_candidates)
+                            candidates.key.resize(2 * (candidate_count + 64));
+                            for (auto* v : {&candidates.cx, &candidates.cy, &candidates.cz}) v->resize(candidates.key.size());
                         }
-                        if (Solid) {
-                            // Keys along the row by their step (cell_key_3d, wrapping arithmetic).
-                            std::uint64_t key = cell_key_3d(i0, j, k);
-                            for (std::int64_t i = i0; i <= i1; ++i, key += step_i) test_cell(key, i, j, k);
-                        } else {
-                            for (std::int64_t i = i0; i <= i1; ++i) test_cell(cell_key_2d(i, j), i, j, k);
-                        }
+                        if (Solid) candidates.candidate_rows.push_back({i0, i1, j, k});
+                        else for (std::int64_t i = i0; i <= i1; ++i) test_cell_2d(i, j);
                         continue;
                     }
                     gabor_raster::CellRow row;
@@ -462,9 +456,20 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                 }
             input.cells = &cells;
             if (single) {
+                if (Solid) {
+                    // M = n nᵀ + T A⁻¹ Tᵀ, the support's matrix: dᵀMd = (n·d)² + (t·d, b·d) A⁻¹ (t·d, b·d)ᵀ
+                    // in half the operations. q only has to be right to far less than the margin:
+                    // kept octaves have det A ≤ 32², A⁻¹ a condition number ≤ 1024, q an error ~1e-13.
+                    gabor_raster::CandidateTest test{key_3d_, step_i, step_j, step_k, cell_3d_, {x[0], y[0], z}, {}, reach2};
+                    for (int r = 0; r < 3; ++r)
+                        for (int c = 0; c < 3; ++c) test.m[r][c] = support.m[r][c];
+                    kept = gabor_raster::test_candidates(test, candidates.candidate_rows.data(), candidates.candidate_rows.size(),
+                                                         candidates.key.data(), candidates.cx.data(), candidates.cy.data(),
+                                                         candidates.cz.data());
+                }
                 cells.resize(kept);
                 for (std::size_t m = 0; m < kept; ++m)
-                    set_impulse(m, candidates.key[m], candidates.position[m][0], candidates.position[m][1], candidates.position[m][2]);
+                    set_impulse(m, candidates.key[m], candidates.cx[m], candidates.cy[m], candidates.cz[m]);
                 gabor_raster::CellRow every;
                 every.count = std::uint32_t(cells.size());
                 every.every_cell = true;
