@@ -11,6 +11,10 @@
 //   Ref/Perlin3D     libnoise 3D Perlin, one octave (only with libnoise-dev)
 //   Texture/...      512² renders of the gabor and the wavelet texture analysed from one photo
 //                    (2D and solid, filtered at the photo's scale), "Mpix/s"
+//   Points3D/...     512² scattered surface points of the gabor texture (a position-map bake of a
+//                    sphere, sphere_points.h), each with its own normal and footprint: path:batch
+//                    is GaborTexture::eval_solid_points, path:point the loop over eval_solid();
+//                    calling thread, "Mpix/s" per CPU-second. Values are identical.
 //
 // Run: build/bench/gabor_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // A comparison of the medians (x = speed relative to the plain sum and to Perlin) follows the table.
@@ -26,6 +30,7 @@
 #include <benchmark/benchmark.h>
 
 #include "median_reporter.h"
+#include "sphere_points.h"
 
 #ifdef STOCHTEX_HAVE_LIBNOISE
 #include <libnoise/noise.h>
@@ -232,6 +237,20 @@ void bm_render(benchmark::State& state, const Model* model, bool solid, int thre
                    ", RGB, filtered, threads=" + std::to_string(threads));
 }
 
+void bm_surface_points(benchmark::State& state, const Model* model, bool batch)
+{
+    const std::vector<SurfacePoint> points = bench::sphere_points(grid, model->description.pixels_per_unit);
+    std::vector<float> planes;
+    for (auto _ : state) {
+        bench::eval_surface_rows(*model->texture, points, grid, batch, planes);
+        benchmark::DoNotOptimize(planes.data());
+        benchmark::ClobberMemory();
+    }
+    set_rate(state, "Mpix/s", double(points.size()));  // per CPU-second: no UseRealTime
+    state.SetLabel(model->description.model + " surface points of a sphere, filtered, " +
+                   (batch ? "eval_solid_points" : "point loop (eval_solid)") + ", calling thread");
+}
+
 // ---- Comparison of the medians -------------------------------------------------------------------
 
 class ComparingReporter : public stochtex::bench::MedianReporter {
@@ -335,6 +354,12 @@ int main(int argc, char** argv)
                                               "/threads:" + std::to_string(threads)).c_str(),
                                              bm_render, model, solid, threads)
                     ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+    for (bool batch : {true, false})
+        benchmark::RegisterBenchmark(("Points3D/" + std::to_string(grid) + "x" + std::to_string(grid) + "/gabor" +
+                                      (batch ? "/path:batch" : "/path:point")).c_str(),
+                                     bm_surface_points, &gabor, batch)
+            ->Unit(benchmark::kMillisecond);
 
     // The comparison needs the console table; other formats (JSON, CSV) get Google Benchmark's own.
     ComparingReporter comparing(isatty(STDOUT_FILENO) ? benchmark::ConsoleReporter::OO_ColorTabular

@@ -32,6 +32,7 @@
 
 #include "median_reporter.h"
 #include "photo_crop.h"
+#include "sphere_points.h"
 
 #ifdef STOCHTEX_HAVE_LIBNOISE
 #include <libnoise/noise.h>
@@ -246,45 +247,16 @@ void bm_raster(benchmark::State& state, const Model* model, bool solid, bool sim
                    ", calling thread");
 }
 
-// Scattered surface points, what a position-map bake evaluates (stex bake --positions, the
-// Blender add-on's solid route): a 512² map of a unit sphere's upper half seen from above, scaled
-// to the photo's texel, each point's derivatives those of its texel. path:batch is the model's
-// eval_solid_points (vectorised), path:point the scalar reference (Texture's default loop over
-// eval_solid()), one 512-point row per call as bake.cpp does; calling thread.
-std::vector<stochtex::SurfacePoint> sphere_points(const Model& model)
-{
-    const double radius = 0.5 * raster_size / model.description.pixels_per_unit;  // texture units
-    const double texel = 2 * radius / raster_size;
-    std::vector<stochtex::SurfacePoint> points;
-    for (int y = 0; y < raster_size; ++y)
-        for (int x = 0; x < raster_size; ++x) {
-            const double u = (x + 0.5) * texel - radius, v = (y + 0.5) * texel - radius;
-            const double r2 = std::min(u * u + v * v, 0.999 * radius * radius);
-            const double h = std::sqrt(radius * radius - r2);
-            stochtex::SurfacePoint point;
-            point.p = {u, v, h};
-            // dP/dx, dP/dy of the height field h(u, v): (texel, 0, −u/h·texel), (0, texel, −v/h·texel).
-            point.dpdx = {texel, 0, -u / h * texel};
-            point.dpdy = {0, texel, -v / h * texel};
-            point.n = {u / radius, v / radius, h / radius};
-            points.push_back(point);
-        }
-    return points;
-}
-
+// Scattered surface points (sphere_points.h): path:batch is the model's eval_solid_points
+// (vectorised), path:point the scalar reference (Texture's default loop over eval_solid()), one
+// 512-point row per call as bake.cpp does; calling thread.
 void bm_surface_points(benchmark::State& state, const Model* model, bool batch)
 {
-    const std::vector<stochtex::SurfacePoint> points = sphere_points(*model);
-    std::vector<float> planes(3 * raster_size);
-    const stochtex::Texture& texture = *model->texture;
-    const std::size_t n = raster_size;
-    const auto out = stochtex::RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n);
+    const std::vector<stochtex::SurfacePoint> points =
+        stochtex::bench::sphere_points(raster_size, model->description.pixels_per_unit);
+    std::vector<float> planes;
     for (auto _ : state) {
-        for (std::size_t row = 0; row < points.size(); row += n) {
-            const stochtex::SurfaceBatch batch_of_row{points.data() + row, n};
-            if (batch) texture.eval_solid_points(batch_of_row, out);
-            else texture.Texture::eval_solid_points(batch_of_row, out);
-        }
+        stochtex::bench::eval_surface_rows(*model->texture, points, raster_size, batch, planes);
         benchmark::DoNotOptimize(planes.data());
         benchmark::ClobberMemory();
     }

@@ -954,6 +954,74 @@ TEST(GaborTexture, RenderIsIdenticalForAnyThreadCountAndSeeded)
     }
 }
 
+TEST(GaborTexture, SurfacePointBatchesEqualTheSolidPointMethodBitForBit)
+{
+    // eval_solid_points (a position-map bake, Blender's solid route) against eval_solid() at
+    // scattered points of a sphere, each with its own normal and footprint: magnified (a point
+    // sample, sub-texel), at the photo's scale and minified until octaves fade and drop; more
+    // than one 256-point chunk, not a multiple of a vector; positions near the origin, negative
+    // and at 5e9 units. Histograms on and off, joint colour, rgb-shared (one noise for three
+    // channels); planar and interleaved output; on every instruction set this CPU has.
+    const Image photo = read_image_linear(test::repo_exemplar("concrete_512.png"));
+    auto analysed = [&](HistogramMode histogram, bool joint, ColourMode mode) {
+        AnalysisOptions options;
+        options.model = "gabor";
+        options.histogram = histogram;
+        options.max_bands = 5;
+        options.joint_colour = joint;
+        options.colour_mode = mode;
+        return analyze(photo, options);
+    };
+    const TextureDescription descriptions[] = {analysed(HistogramMode::on, false, ColourMode::pca),
+                                               analysed(HistogramMode::off, false, ColourMode::pca),
+                                               analysed(HistogramMode::on, true, ColourMode::pca),
+                                               analysed(HistogramMode::on, false, ColourMode::rgb_shared)};
+    ASSERT_TRUE(descriptions[2].chroma_given_brightness.enabled());
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        for (const TextureDescription& d : descriptions) {
+            const auto texture = make_texture(d);
+            const double pixel = 1.0 / d.pixels_per_unit;
+            SplitMix64 rng(23);
+            std::vector<SurfacePoint> points(601);
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                SurfacePoint& point = points[k];
+                const Vec3 n = random_unit(rng);
+                const double far = k % 7 == 3 ? 5e9 : 0.0, radius = 0.3;
+                point.p = {far + radius * n[0] - 0.2, radius * n[1] + 0.1, far + radius * n[2] - 0.4};
+                point.n = n;
+                // Two tangents: n × (an axis not along n), and n × that one.
+                const Vec3 axis = std::abs(n[2]) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
+                Vec3 t{n[1] * axis[2] - n[2] * axis[1], n[2] * axis[0] - n[0] * axis[2], n[0] * axis[1] - n[1] * axis[0]};
+                const double length = std::sqrt(dot3(t, t));
+                for (double& e : t) e /= length;
+                const Vec3 b{n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+                // Footprints from none through 0.1 and 1 to 64 texels, anisotropic and sheared.
+                const double footprint_px = k % 5 == 0 ? 0.0 : std::exp2(10 * rng.uniform() - 3.5);
+                const double f = footprint_px * pixel, stretch = 0.25 + rng.uniform(), shear = rng.uniform() - 0.5;
+                for (int e = 0; e < 3; ++e) {
+                    point.dpdx[e] = f * t[e];
+                    point.dpdy[e] = f * stretch * (b[e] + shear * t[e]);
+                }
+            }
+            const std::size_t count = points.size();
+            std::vector<float> planes(3 * count, -1.0f), rgb(3 * count, -1.0f);
+            texture->eval_solid_points({points.data(), count},
+                                       RgbOutput::planar(planes.data(), planes.data() + count, planes.data() + 2 * count));
+            texture->eval_solid_points({points.data() + 1, count - 1}, RgbOutput::interleaved(rgb.data()));
+            for (std::size_t k = 0; k < count; ++k) {
+                const Rgb expected = texture->eval_solid(points[k]);
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_EQ(planes[c * count + k], expected[c]) << "surface point " << k;
+                    if (k > 0) ASSERT_EQ(rgb[3 * (k - 1) + c], expected[c]) << "surface point " << k << ", interleaved";
+                }
+            }
+        }
+    }
+    hwy::SetSupportedTargetsForTest(0);
+}
+
 TEST(GaborTexture, PeriodicFormRepeatsAndKeepsTheStatistics)
 {
     const TextureDescription d = concrete(HistogramMode::on, 6);

@@ -50,7 +50,13 @@ inline double position_fraction(std::uint64_t bits) { return (std::int32_t(bits 
 /// Attribute word layout: channel phases in bits 0–29, azimuth index in 30–39, cos(colatitude) in 40–63.
 inline int phase_index(std::uint64_t attributes, int channel) { return int((attributes >> (phase_bits * channel)) & (phase_count - 1)); }
 
-inline std::int64_t floor_index(double x) { return std::int64_t(std::floor(x)); }
+/// floor(x) as an integer, for |x| < 2^63: truncation, one less below zero off the integers
+/// (std::floor is a library call on baseline x86-64, a few of them per row of cells).
+inline std::int64_t floor_index(double x)
+{
+    const std::int64_t t = std::int64_t(x);
+    return t - std::int64_t(x < double(t));
+}
 
 /// P(χ² with 3 degrees of freedom ≤ x): the energy fraction of a 3D Gaussian inside a sphere.
 double chi_square_3_cdf(double x)
@@ -198,14 +204,23 @@ inline bool row_span_2d(const Symmetric2& q, double r2, double y0, double y1, Ro
 struct Ellipsoid {
     double m[3][3];
     double schur_min;  // smallest eigenvalue of the (y, z) Schur complement
+    // Once per ellipsoid rather than per row (divisions): 1 / m_xx and the centre's slopes
+    // −m_xy / m_xx, −m_xz / m_xx. (A span a rounding wider or narrower moves its ends by far less
+    // than its margin: the cells whose kernels can reach the points are the same.)
+    double inverse_xx, ky, kz;
+    void prepare()
+    {
+        inverse_xx = 1 / m[0][0];
+        ky = -m[0][1] * inverse_xx, kz = -m[0][2] * inverse_xx;
+    }
 };
 
 inline bool row_span_3d(const Ellipsoid& e, double r2, double y0, double y1, double z0, double z1, RowSpan& span)
 {
     const double ny = y0 > 0 ? y0 : y1 < 0 ? y1 : 0.0, nz = z0 > 0 ? z0 : z1 < 0 ? z1 : 0.0;
-    const double w2 = (r2 - e.schur_min * (ny * ny + nz * nz)) / e.m[0][0];
+    const double w2 = (r2 - e.schur_min * (ny * ny + nz * nz)) * e.inverse_xx;
     if (w2 < 0) return false;
-    const double w = std::sqrt(w2), ky = -e.m[0][1] / e.m[0][0], kz = -e.m[0][2] / e.m[0][0];
+    const double w = std::sqrt(w2), ky = e.ky, kz = e.kz;
     const double c00 = ky * y0 + kz * z0, c01 = ky * y0 + kz * z1, c10 = ky * y1 + kz * z0, c11 = ky * y1 + kz * z1;
     span = {std::min(std::min(c00, c01), std::min(c10, c11)) - w, std::max(std::max(c00, c01), std::max(c10, c11)) + w};
     return true;
@@ -250,8 +265,10 @@ struct GridScratch {
     gabor_raster::CellImpulses cells;
     std::vector<gabor_raster::CellRow> block_rows, rows;
     std::vector<std::int64_t> row_j, row_k;
-    std::vector<std::uint64_t> key;  // a single point's candidate cells
-    std::vector<Vec3> position;
+    // A single point's kept candidate cells: keys, impulse positions; solid, its rows of cells.
+    std::vector<std::uint64_t> key;
+    std::vector<double> cx, cy, cz;
+    std::vector<gabor_raster::CandidateRow> candidate_rows;
 };
 
 GridScratch& grid_scratch()
@@ -264,12 +281,12 @@ GridScratch& grid_scratch()
 /// cells of the finest octaves stay in the L1/L2 cache.
 constexpr std::size_t block_columns = 64, block_rows = 16;
 
-void push_phases(gabor_raster::CellImpulses& cells, std::uint64_t attributes)
+void set_phases(gabor_raster::CellImpulses& cells, std::size_t m, std::uint64_t attributes)
 {
     for (int c = 0; c < 3; ++c) {
         const int index = phase_index(attributes, c);
-        cells.cos_phase[c].push_back(phase_table.cosine[index]);
-        cells.sin_phase[c].push_back(phase_table.sine[index]);
+        cells.cos_phase[c][m] = phase_table.cosine[index];
+        cells.sin_phase[c][m] = phase_table.sine[index];
     }
 }
 
@@ -319,6 +336,7 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
     input.z = z;
     const double sx = Solid ? cell_3d_ : cell_x_, sy = Solid ? cell_3d_ : cell_y_, sz = cell_3d_;
     input.cell_x = sx;
+    const double inverse_sx = 1 / sx;  // cells of a span: its ends times this (see Ellipsoid)
 
     // The support: 2D the ellipse dᵀA⁻¹d ≤ r²; sliced the ellipsoid h² + pᵀA⁻¹p ≤ r² (thickness r
     // along n: slicing does not widen kernels, filtering widens them in the plane), whose extent
@@ -336,6 +354,7 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
         support.schur_min = Symmetric2{m[1][1] - m[0][1] * m[0][1] / m[0][0], m[1][2] - m[0][1] * m[0][2] / m[0][0],
                                        m[2][2] - m[0][2] * m[0][2] / m[0][0]}
                                 .smallest_eigenvalue();
+        support.prepare();
     }
     // The span along x of the support over the row of cells (j, k), for points with y in
     // [y_lo, y_hi] (and the grid's z).
@@ -355,44 +374,43 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
     const bool single = nx == 1 && ny == 1;
     GridScratch& candidates = grid_scratch();
     std::size_t kept = 0;
-    auto test_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-        const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
-        const std::uint64_t bits = mix64(key);
+    // 2D: tested here; solid: rows collected, tested together by vectors of cells
+    // (gabor_raster::test_candidates: the same operations, lane-wise).
+    auto test_cell_2d = [&](std::int64_t i, std::int64_t j) {
+        const std::uint64_t key = cell_key_2d(i, j), bits = mix64(key);
         const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
-        const double cz = Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0;
-        const Vec3 d{x[0] - cx, y[0] - cy, z - cz};
-        const double q = Solid ? dot3(n, d) * dot3(n, d) + inverse.quadratic_form(dot3(t, d), dot3(b, d))
-                               : inverse.quadratic_form(d[0], d[1]);
+        const double q = inverse.quadratic_form(x[0] - cx, y[0] - cy);
         candidates.key[kept] = key;
-        candidates.position[kept] = {cx, cy, cz};
+        candidates.cx[kept] = cx, candidates.cy[kept] = cy, candidates.cz[kept] = 0.0;
         kept += q <= reach2;
     };
+    std::size_t candidate_count = 0;
+    if (single) candidates.candidate_rows.clear();
     // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
-    auto push_impulse = [&](std::uint64_t key, double cx, double cy, double cz) {
+    // Written at index m of cells already sized (CellImpulses::resize): no growth checks per array.
+    auto set_impulse = [&](std::size_t m, std::uint64_t key, double cx, double cy, double cz) {
         const std::uint64_t attributes = mix64(key + attribute_offset);
         const Vec3 omega = fixed ? omega_ : frequency_of(key, attributes);
-        cells.x.push_back(cx);
-        cells.y.push_back(cy);
-        cells.z.push_back(cz);
+        cells.x[m] = cx, cells.y[m] = cy, cells.z[m] = cz;
         // In-plane frequency ω^s (2D: the projected one), filtered: A⁻¹ω^s (eq. 10).
         const double st = Solid ? dot3(t, omega) : omega[0], sb = Solid ? dot3(b, omega) : omega[1];
         const double wx = inverse.xx * st + inverse.xy * sb, wy = inverse.xy * st + inverse.yy * sb;
         if (Solid) {
             // The phase 2π (A⁻¹ω^s·p + h n·ω) (eq. 6) as one frequency in texture axes.
             const double wn = dot3(n, omega);
-            cells.wx.push_back(float(wx * t[0] + wy * b[0] + wn * n[0]));
-            cells.wy.push_back(float(wx * t[1] + wy * b[1] + wn * n[1]));
-            cells.wz.push_back(float(wx * t[2] + wy * b[2] + wn * n[2]));
+            cells.wx[m] = float(wx * t[0] + wy * b[0] + wn * n[0]);
+            cells.wy[m] = float(wx * t[1] + wy * b[1] + wn * n[1]);
+            cells.wz[m] = float(wx * t[2] + wy * b[2] + wn * n[2]);
         } else {
-            cells.wx.push_back(float(wx)), cells.wy.push_back(float(wy)), cells.wz.push_back(0.0f);
+            cells.wx[m] = float(wx), cells.wy[m] = float(wy), cells.wz[m] = 0.0f;
         }
-        cells.log_amplitude.push_back(float(-damping.quadratic_form(st, sb)));
-        push_phases(cells, attributes);
+        cells.log_amplitude[m] = float(-damping.quadratic_form(st, sb));
+        set_phases(cells, m, attributes);
     };
-    auto push_cell = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    auto set_cell = [&](std::size_t m, std::int64_t i, std::int64_t j, std::int64_t k) {
         const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
         const std::uint64_t bits = mix64(key);
-        push_impulse(key, i * sx + position_fraction(bits) * sx, j * sy + position_fraction(bits >> 21) * sy,
+        set_impulse(m, key, i * sx + position_fraction(bits) * sx, j * sy + position_fraction(bits >> 21) * sy,
                      Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0);
     };
 
@@ -416,18 +434,21 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                 for (std::int64_t j = j0; j <= j1; ++j) {
                     RowSpan span;
                     if (!row_span(j, k, y_lo, y_hi, span)) continue;
-                    const std::int64_t i0 = floor_index((x_lo + span.lo) / sx), i1 = floor_index((x_hi + span.hi) / sx);
+                    const std::int64_t i0 = floor_index((x_lo + span.lo) * inverse_sx), i1 = floor_index((x_hi + span.hi) * inverse_sx);
                     if (single) {  // one list of the kept cells, below
-                        if (candidates.key.size() < kept + std::size_t(i1 - i0 + 1)) {
-                            candidates.key.resize(2 * (kept + std::size_t(i1 - i0 + 1)));
-                            candidates.position.resize(candidates.key.size());
+                        candidate_count += std::size_t(i1 - i0 + 1);
+                        if (candidates.key.size() < candidate_count + 64) {  // (+ a vector: test_candidates)
+                            candidates.key.resize(2 * (candidate_count + 64));
+                            for (auto* v : {&candidates.cx, &candidates.cy, &candidates.cz}) v->resize(candidates.key.size());
                         }
-                        for (std::int64_t i = i0; i <= i1; ++i) test_cell(i, j, k);
+                        if (Solid) candidates.candidate_rows.push_back({i0, i1, j, k});
+                        else for (std::int64_t i = i0; i <= i1; ++i) test_cell_2d(i, j);
                         continue;
                     }
                     gabor_raster::CellRow row;
                     row.first = std::uint32_t(cells.size());
-                    for (std::int64_t i = i0; i <= i1; ++i) push_cell(i, j, k);
+                    cells.resize(cells.size() + std::size_t(i1 - i0 + 1));
+                    for (std::int64_t i = i0; i <= i1; ++i) set_cell(row.first + std::size_t(i - i0), i, j, k);
                     row.count = std::uint32_t(cells.size() - row.first);
                     row.i_first = i0;
                     scratch.block_rows.push_back(row);
@@ -435,8 +456,20 @@ void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std
                 }
             input.cells = &cells;
             if (single) {
+                if (Solid) {
+                    // M = n nᵀ + T A⁻¹ Tᵀ, the support's matrix: dᵀMd = (n·d)² + (t·d, b·d) A⁻¹ (t·d, b·d)ᵀ
+                    // in half the operations. q only has to be right to far less than the margin:
+                    // kept octaves have det A ≤ 32², A⁻¹ a condition number ≤ 1024, q an error ~1e-13.
+                    gabor_raster::CandidateTest test{key_3d_, step_i, step_j, step_k, cell_3d_, {x[0], y[0], z}, {}, reach2};
+                    for (int r = 0; r < 3; ++r)
+                        for (int c = 0; c < 3; ++c) test.m[r][c] = support.m[r][c];
+                    kept = gabor_raster::test_candidates(test, candidates.candidate_rows.data(), candidates.candidate_rows.size(),
+                                                         candidates.key.data(), candidates.cx.data(), candidates.cy.data(),
+                                                         candidates.cz.data());
+                }
+                cells.resize(kept);
                 for (std::size_t m = 0; m < kept; ++m)
-                    push_impulse(candidates.key[m], candidates.position[m][0], candidates.position[m][1], candidates.position[m][2]);
+                    set_impulse(m, candidates.key[m], candidates.cx[m], candidates.cy[m], candidates.cz[m]);
                 gabor_raster::CellRow every;
                 every.count = std::uint32_t(cells.size());
                 every.every_cell = true;

@@ -137,6 +137,63 @@ void SumRowOf(const RowInput& in, const double* x, std::size_t count, float* con
     }
 }
 
+/// SplitMix64's output function (gabor_noise.cpp's mix64), lane-wise.
+template <class D, class V>
+V Mix64(D d, V z)
+{
+    z = hn::Mul(hn::Xor(z, hn::ShiftRight<30>(z)), hn::Set(d, 0xbf58476d1ce4e5b9ull));
+    z = hn::Mul(hn::Xor(z, hn::ShiftRight<27>(z)), hn::Set(d, 0x94d049bb133111ebull));
+    return hn::Xor(z, hn::ShiftRight<31>(z));
+}
+
+std::size_t TestCandidates(const CandidateTest& in, const CandidateRow* rows, std::size_t row_count, std::uint64_t* key_out,
+                           double* x_out, double* y_out, double* z_out)
+{
+    const hn::ScalableTag<double> dd;
+    const hn::RebindToUnsigned<decltype(dd)> du;
+    const hn::RebindToSigned<decltype(dd)> di;
+    const std::size_t lanes = hn::Lanes(dd);
+    const auto cell = hn::Set(dd, in.cell), half = hn::Set(dd, 0.5), scale = hn::Set(dd, 0x1.0p-21);
+    const auto field = hn::Set(du, 0x1fffffull);
+    const auto px = hn::Set(dd, in.p[0]), py = hn::Set(dd, in.p[1]), pz = hn::Set(dd, in.p[2]);
+    const auto m00 = hn::Set(dd, in.m[0][0]), m11 = hn::Set(dd, in.m[1][1]), m22 = hn::Set(dd, in.m[2][2]);
+    const auto m01 = hn::Set(dd, in.m[0][1]), m02 = hn::Set(dd, in.m[0][2]), m12 = hn::Set(dd, in.m[1][2]);
+    const auto two = hn::Set(dd, 2.0), limit = hn::Set(dd, in.limit);
+    const auto lane_steps = hn::Mul(hn::Iota(du, 0), hn::Set(du, in.step_i));
+    // (int32(bits & 0x1fffff) + ½)·2^-21 · cell, plus the index times the cell, as position_fraction.
+    auto coordinate = [&](hn::Vec<decltype(dd)> index, hn::Vec<decltype(du)> bits) {
+        const auto fraction = hn::Mul(hn::Add(hn::ConvertTo(dd, hn::BitCast(di, hn::And(bits, field))), half), scale);
+        return hn::Add(hn::Mul(index, cell), hn::Mul(fraction, cell));
+    };
+    std::size_t kept = 0;
+    for (std::size_t r = 0; r < row_count; ++r) {
+        const CandidateRow& row = rows[r];
+        const std::uint64_t base = in.key0 + std::uint64_t(row.j) * in.step_j + std::uint64_t(row.k) * in.step_k;
+        const auto j = hn::Set(dd, double(row.j)), k = hn::Set(dd, double(row.k));
+        for (std::int64_t i0 = row.i0; i0 <= row.i1; i0 += std::int64_t(lanes)) {
+            const std::size_t n = std::min<std::size_t>(lanes, std::size_t(row.i1 - i0 + 1));
+            const auto key = hn::Add(hn::Set(du, base + std::uint64_t(i0) * in.step_i), lane_steps);
+            const auto bits = Mix64(du, key);
+            const auto i = hn::ConvertTo(dd, hn::Add(hn::Set(di, i0), hn::Iota(di, 0)));
+            const auto cx = coordinate(i, bits), cy = coordinate(j, hn::ShiftRight<21>(bits)),
+                       cz = coordinate(k, hn::ShiftRight<42>(bits));
+            const auto d0 = hn::Sub(px, cx), d1 = hn::Sub(py, cy), d2 = hn::Sub(pz, cz);
+            // GaborNoise's scalar form, operation for operation.
+            const auto diagonal = hn::Add(hn::Add(hn::Mul(hn::Mul(m00, d0), d0), hn::Mul(hn::Mul(m11, d1), d1)),
+                                          hn::Mul(hn::Mul(m22, d2), d2));
+            const auto cross = hn::Add(hn::Add(hn::Mul(hn::Mul(m01, d0), d1), hn::Mul(hn::Mul(m02, d0), d2)),
+                                       hn::Mul(hn::Mul(m12, d1), d2));
+            const auto q = hn::Add(diagonal, hn::Mul(two, cross));
+            const auto keep = hn::And(hn::Le(q, limit), hn::FirstN(dd, n));
+            hn::CompressStore(key, hn::RebindMask(du, keep), du, key_out + kept);
+            hn::CompressStore(cx, keep, dd, x_out + kept);
+            hn::CompressStore(cy, keep, dd, y_out + kept);
+            kept += hn::CompressStore(cz, keep, dd, z_out + kept);
+        }
+    }
+    return kept;
+}
+
 void SumRow(const RowInput& in, const double* x, std::size_t count, float* const out[3])
 {
     if (in.solid) {
@@ -155,12 +212,26 @@ HWY_AFTER_NAMESPACE();
 namespace stochtex::gabor_raster {
 
 HWY_EXPORT(SumRow);
+HWY_EXPORT(TestCandidates);
+
+std::size_t test_candidates(const CandidateTest& test, const CandidateRow* rows, std::size_t row_count, std::uint64_t* key,
+                            double* x, double* y, double* z)
+{
+    return HWY_DYNAMIC_DISPATCH(TestCandidates)(test, rows, row_count, key, x, y, z);
+}
 
 void CellImpulses::clear()
 {
     for (std::vector<double>* v : {&x, &y, &z}) v->clear();
     for (std::vector<float>* v : {&wx, &wy, &wz, &log_amplitude}) v->clear();
     for (int c = 0; c < 3; ++c) cos_phase[c].clear(), sin_phase[c].clear();
+}
+
+void CellImpulses::resize(std::size_t n)
+{
+    for (std::vector<double>* v : {&x, &y, &z}) v->resize(n);
+    for (std::vector<float>* v : {&wx, &wy, &wz, &log_amplitude}) v->resize(n);
+    for (int c = 0; c < 3; ++c) cos_phase[c].resize(n), sin_phase[c].resize(n);
 }
 
 void sum_row(const RowInput& input, const double* x, std::size_t count, float* const out[3])

@@ -28,6 +28,8 @@ struct CellImpulses {
 
     std::size_t size() const { return x.size(); }
     void clear();
+    /// Every array to n impulses (kept ones unchanged, new ones to be written).
+    void resize(std::size_t n);
 };
 
 /// Cells [first, first + count) of a CellImpulses are one row of cells along x, the first with
@@ -65,5 +67,26 @@ struct RowInput {
 
 /// out[c][k] = float(gain · Σ kernels of channel c) at x[k], k < count, c < channels.
 void sum_row(const RowInput& input, const double* x, std::size_t count, float* const out[3]);
+
+/// A single point's candidate cells of the solid noise, culled in double before their impulses
+/// are prepared (GaborNoise::eval_sliced): rows of cells (j, k), i from i0 to i1.
+struct CandidateRow {
+    std::int64_t i0, i1, j, k;
+};
+/// Cell (i, j, k) has the key key0 + i·step_i + j·step_j + k·step_k (wrapping) and its impulse
+/// at ((i, j, k) + fraction) · cell, the fractions the 21-bit fields of mix64(key) plus ½, times
+/// 2^-21 (gabor_noise.cpp's cell_key_3d, position_fraction). Kept: (p − c)ᵀ m (p − c) ≤ limit.
+struct CandidateTest {
+    std::uint64_t key0, step_i, step_j, step_k;
+    double cell;
+    double p[3];
+    double m[3][3];
+    double limit;
+};
+/// The kept cells' keys and impulse positions, rows in order and i ascending, into key, x, y, z
+/// (room for every candidate plus 64); returns how many. Exactly the scalar test's cells: the
+/// same integer and IEEE double operations, lane-wise.
+std::size_t test_candidates(const CandidateTest& test, const CandidateRow* rows, std::size_t row_count, std::uint64_t* key,
+                            double* x, double* y, double* z);
 
 }  // namespace stochtex::gabor_raster

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
+#include <utility>
 
 namespace stochtex {
 
@@ -95,7 +97,11 @@ GaborTexture::GaborTexture(const TextureDescription& description, const Vec2* pe
                 continue;
             }
         }
-        octaves_.push_back({GaborNoise(parameters), weight});
+        GaborNoise noise(parameters);  // validates the octave, whatever its weights
+        // An octave of weight 0 in every channel adds exact zeros to the sums (which start at
+        // +0, so stay unchanged) and nothing to the dropped variance: not evaluated at all.
+        if (weight[0] == 0 && weight[1] == 0 && weight[2] == 0) continue;
+        octaves_.push_back({std::move(noise), weight});
     }
 }
 
@@ -149,6 +155,17 @@ Symmetric2 render_blur(const Symmetric2& pixel_filter)
 
 }  // namespace
 
+void GaborTexture::add_octave(const Plan::Kept& planned, const float* const value[3], double* const kept[3],
+                              std::size_t count) const
+{
+    const Octave& octave = octaves_[planned.octave];
+    const bool shared = octave.noise.parameters().channels == 1;  // rgb-shared: one noise
+    for (int c = 0; c < 3; ++c) {
+        const float* v = value[shared ? 0 : c];
+        for (std::size_t p = 0; p < count; ++p) kept[c][p] += planned.fade * octave.weight[c] * v[p];
+    }
+}
+
 template <class GridNoise>
 void GaborTexture::synthesize(const Plan& plan, const Grid& grid, const RgbOutput& out, const GridNoise& grid_noise) const
 {
@@ -163,13 +180,8 @@ void GaborTexture::synthesize(const Plan& plan, const Grid& grid, const RgbOutpu
         for (int c = 0; c < 3; ++c) std::fill(kept[c], kept[c] + pixels, 0.0);
         // m_c = Σ_k fade_k · w_ck · n_k, octave after octave: the same order for every pixel.
         for (const Plan::Kept& planned : plan.octaves) {
-            const Octave& octave = octaves_[planned.octave];
-            grid_noise(octave.noise, planned.filter, grid.x, grid.nx, grid.y + first_row, rows, value);
-            const bool shared = octave.noise.parameters().channels == 1;  // rgb-shared: one noise
-            for (int c = 0; c < 3; ++c) {
-                const float* v = value[shared ? 0 : c];
-                for (std::size_t p = 0; p < pixels; ++p) kept[c][p] += planned.fade * octave.weight[c] * v[p];
-            }
+            grid_noise(octaves_[planned.octave].noise, planned.filter, grid.x, grid.nx, grid.y + first_row, rows, value);
+            add_octave(planned, value, kept, pixels);
         }
         colour_.to_rgb({kept[0], kept[1], kept[2]}, 1.0, plan.dropped_sigma, out, first_row * grid.nx, pixels);
     }
@@ -183,12 +195,18 @@ void GaborTexture::eval_2d(const Footprint2D& footprint, const Grid& grid, const
                   std::size_t ny, float* const* value) { noise.eval_2d_grid(x, nx, y, ny, filter, value); });
 }
 
+GaborTexture::Plan GaborTexture::solid_plan(const SurfacePoint& point, TangentFrame& frame) const
+{
+    frame = tangent_frame(point.n, point.dpdx);
+    // The screen-to-tangent Jacobian: the footprint's derivatives in the (t, b) frame (paper §5).
+    return plan(render_blur(filter_covariance(tangent_footprint(frame, point), description().pixels_per_unit)), frame);
+}
+
 void GaborTexture::eval_sliced(const SurfacePoint& shared, const Grid& grid, const RgbOutput& out) const
 {
-    const TangentFrame frame = tangent_frame(shared.n, shared.dpdx);
-    // The screen-to-tangent Jacobian: the footprint's derivatives in the (t, b) frame (paper §5).
-    const Symmetric2 covariance = render_blur(filter_covariance(tangent_footprint(frame, shared), description().pixels_per_unit));
-    synthesize(plan(covariance, frame), grid, out,
+    TangentFrame frame;
+    const Plan octaves = solid_plan(shared, frame);
+    synthesize(octaves, grid, out,
                [&](const GaborNoise& noise, const GaborFilter& filter, const double* x, std::size_t nx, const double* y,
                    std::size_t ny, float* const* value) { noise.eval_sliced_grid(x, nx, y, ny, grid.z, frame, filter, value); });
 }
@@ -241,6 +259,43 @@ void GaborTexture::eval_solid_region(const SolidRegion& region, const RgbOutput&
     // Every pixel has the plane's normal and footprint (SolidRegion::point), so one frame.
     eval_sliced(region.point(0, 0), {scratch.x.data(), scratch.x.size(), scratch.y.data(), scratch.y.size(), region.w * ppu},
                 out);
+}
+
+void GaborTexture::eval_solid_points(const SurfaceBatch& batch, const RgbOutput& out) const
+{
+    // Each point has its own frame and footprint, so nothing of the plan or of the octaves'
+    // prepared impulses is shared as on a plane: each point's noises are eval_solid()'s, a grid
+    // of one point each, summed in eval_solid()'s order. What the batch shares is the colour
+    // mapping, vectorised over a chunk with each point's own dropped σ (a cache of the cells
+    // consecutive points meet was measured slower than hashing them again: docs/models/gabor.md).
+    constexpr std::size_t chunk = 256;
+    struct Scratch {
+        std::array<std::array<double, chunk>, 3> kept, dropped_sigma;
+    };
+    thread_local std::unique_ptr<Scratch> scratch_holder;  // 12 kB: allocated once per thread
+    if (!scratch_holder) scratch_holder = std::make_unique<Scratch>();
+    Scratch& scratch = *scratch_holder;
+    const double ppu = description().pixels_per_unit;
+    for (std::size_t start = 0; start < batch.count; start += chunk) {
+        const std::size_t n = std::min(chunk, batch.count - start);
+        for (std::size_t k = 0; k < n; ++k) {
+            const SurfacePoint& point = batch.points[start + k];
+            TangentFrame frame;
+            const Plan octaves = solid_plan(point, frame);
+            const double x = point.p[0] * ppu, y = point.p[1] * ppu, z = point.p[2] * ppu;
+            double* const kept[3] = {&scratch.kept[0][k], &scratch.kept[1][k], &scratch.kept[2][k]};
+            for (int c = 0; c < 3; ++c) *kept[c] = 0, scratch.dropped_sigma[c][k] = octaves.dropped_sigma[c];
+            float value[GaborNoise::max_channels] = {};
+            float* const channels[GaborNoise::max_channels] = {&value[0], &value[1], &value[2]};
+            for (const Plan::Kept& planned : octaves.octaves) {
+                octaves_[planned.octave].noise.eval_sliced_grid(&x, 1, &y, 1, z, frame, planned.filter, channels);
+                add_octave(planned, channels, kept, 1);
+            }
+        }
+        colour_.to_rgb({scratch.kept[0].data(), scratch.kept[1].data(), scratch.kept[2].data()}, 1.0,
+                       {scratch.dropped_sigma[0].data(), scratch.dropped_sigma[1].data(), scratch.dropped_sigma[2].data()},
+                       out, start, n);
+    }
 }
 
 }  // namespace stochtex

@@ -51,6 +51,10 @@ public:
     /// batched. Bit-identical to the point methods (the same code with one point).
     void eval_region(const RasterRegion& region, const RgbOutput& out) const override;
     void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const override;
+    /// eval_solid() at scattered surface points, each with its own frame and filters: the
+    /// octaves' noises point by point as eval_solid() sums them, the colour mapping over chunks
+    /// of points with each one's dropped σ. Bit-identical to eval_solid().
+    void eval_solid_points(const SurfaceBatch& points, const RgbOutput& out) const override;
 
 private:
     GaborTexture(const TextureDescription& description, const Vec2* period);
@@ -67,6 +71,10 @@ private:
         std::array<double, 3> dropped_sigma{};
     };
     Plan plan(const Symmetric2& footprint, const TangentFrame& frame) const;
+    /// A surface point's slicing frame and the plan of its footprint projected on that plane.
+    Plan solid_plan(const SurfacePoint& point, TangentFrame& frame) const;
+    /// kept[c][p] += fade · w_c · value[c][p], p < count: one planned octave's noise into the sums.
+    void add_octave(const Plan::Kept& planned, const float* const value[3], double* const kept[3], std::size_t count) const;
     /// Pixel centres (x[i], y[j][, z]) in exemplar pixels, i < nx, j < ny: item j·nx + i.
     struct Grid {
         const double* x;
