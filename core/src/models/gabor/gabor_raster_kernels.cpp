@@ -178,7 +178,8 @@ std::size_t TestCandidates(const CandidateTest& in, const CandidateRow* rows, st
             const auto cx = coordinate(i, bits), cy = coordinate(j, hn::ShiftRight<21>(bits)),
                        cz = coordinate(k, hn::ShiftRight<42>(bits));
             const auto d0 = hn::Sub(px, cx), d1 = hn::Sub(py, cy), d2 = hn::Sub(pz, cz);
-            // GaborNoise's scalar form, operation for operation.
+            // dᵀMd by the same IEEE operations in every lane (no fused multiply-add), so every
+            // instruction set keeps the same cells.
             const auto diagonal = hn::Add(hn::Add(hn::Mul(hn::Mul(m00, d0), d0), hn::Mul(hn::Mul(m11, d1), d1)),
                                           hn::Mul(hn::Mul(m22, d2), d2));
             const auto cross = hn::Add(hn::Add(hn::Mul(hn::Mul(m01, d0), d1), hn::Mul(hn::Mul(m02, d0), d2)),

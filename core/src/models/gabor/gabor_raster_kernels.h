@@ -84,8 +84,8 @@ struct CandidateTest {
     double limit;
 };
 /// The kept cells' keys and impulse positions, rows in order and i ascending, into key, x, y, z
-/// (room for every candidate plus 64); returns how many. Exactly the scalar test's cells: the
-/// same integer and IEEE double operations, lane-wise.
+/// (room for every candidate plus 64); returns how many. The same integer and IEEE double
+/// operations in every lane, so every instruction set keeps the same cells.
 std::size_t test_candidates(const CandidateTest& test, const CandidateRow* rows, std::size_t row_count, std::uint64_t* key,
                             double* x, double* y, double* z);
 

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <stdexcept>
 #include <utility>
 
@@ -136,6 +135,7 @@ struct SynthesisScratch {
     std::vector<double> kept;
     std::vector<float> value;
     std::vector<double> x, y;
+    std::vector<double> dropped_sigma;  // eval_solid_points: each point's
 };
 
 /// Kept per thread: a render's row band or a plugin tile allocates nothing once its thread has
@@ -269,12 +269,11 @@ void GaborTexture::eval_solid_points(const SurfaceBatch& batch, const RgbOutput&
     // mapping, vectorised over a chunk with each point's own dropped σ (a cache of the cells
     // consecutive points meet was measured slower than hashing them again: docs/models/gabor.md).
     constexpr std::size_t chunk = 256;
-    struct Scratch {
-        std::array<std::array<double, chunk>, 3> kept, dropped_sigma;
-    };
-    thread_local std::unique_ptr<Scratch> scratch_holder;  // 12 kB: allocated once per thread
-    if (!scratch_holder) scratch_holder = std::make_unique<Scratch>();
-    Scratch& scratch = *scratch_holder;
+    SynthesisScratch& scratch = synthesis_scratch();  // (the noises below do not use it)
+    scratch.kept.resize(3 * chunk);
+    scratch.dropped_sigma.resize(3 * chunk);
+    double* const sums[3] = {&scratch.kept[0], &scratch.kept[chunk], &scratch.kept[2 * chunk]};
+    double* const dropped[3] = {&scratch.dropped_sigma[0], &scratch.dropped_sigma[chunk], &scratch.dropped_sigma[2 * chunk]};
     const double ppu = description().pixels_per_unit;
     for (std::size_t start = 0; start < batch.count; start += chunk) {
         const std::size_t n = std::min(chunk, batch.count - start);
@@ -283,8 +282,8 @@ void GaborTexture::eval_solid_points(const SurfaceBatch& batch, const RgbOutput&
             TangentFrame frame;
             const Plan octaves = solid_plan(point, frame);
             const double x = point.p[0] * ppu, y = point.p[1] * ppu, z = point.p[2] * ppu;
-            double* const kept[3] = {&scratch.kept[0][k], &scratch.kept[1][k], &scratch.kept[2][k]};
-            for (int c = 0; c < 3; ++c) *kept[c] = 0, scratch.dropped_sigma[c][k] = octaves.dropped_sigma[c];
+            double* const kept[3] = {sums[0] + k, sums[1] + k, sums[2] + k};
+            for (int c = 0; c < 3; ++c) *kept[c] = 0, dropped[c][k] = octaves.dropped_sigma[c];
             float value[GaborNoise::max_channels] = {};
             float* const channels[GaborNoise::max_channels] = {&value[0], &value[1], &value[2]};
             for (const Plan::Kept& planned : octaves.octaves) {
@@ -292,9 +291,7 @@ void GaborTexture::eval_solid_points(const SurfaceBatch& batch, const RgbOutput&
                 add_octave(planned, channels, kept, 1);
             }
         }
-        colour_.to_rgb({scratch.kept[0].data(), scratch.kept[1].data(), scratch.kept[2].data()}, 1.0,
-                       {scratch.dropped_sigma[0].data(), scratch.dropped_sigma[1].data(), scratch.dropped_sigma[2].data()},
-                       out, start, n);
+        colour_.to_rgb({sums[0], sums[1], sums[2]}, 1.0, {dropped[0], dropped[1], dropped[2]}, out, start, n);
     }
 }
 
