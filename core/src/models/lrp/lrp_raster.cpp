@@ -211,20 +211,15 @@ void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std:
     }
 }
 
-/// The lattice points [i_begin, i_end) × [j_begin, j_end) whose 3×3 windows hold every grid
-/// pixel's (nearest() never decreases along an axis: the ends' bound every pixel's).
-struct GridWindows {
-    std::int64_t i_begin, i_end, j_begin, j_end;
-    explicit GridWindows(const LrpLattice& lattice, const LrpRasterGrid& grid)
-        : i_begin(lattice.nearest(0, grid.x[0]) - 1),
-          i_end(lattice.nearest(0, grid.x[grid.width - 1]) + 2),
-          j_begin(lattice.nearest(1, grid.y[0]) - 1),
-          j_end(lattice.nearest(1, grid.y[grid.height - 1]) + 2)
-    {
-    }
-};
-
 }  // namespace
+
+LrpGridWindows::LrpGridWindows(const LrpLattice& lattice, const LrpRasterGrid& grid)
+    : i_begin(lattice.nearest(0, grid.x[0]) - 1),
+      i_end(lattice.nearest(0, grid.x[grid.width - 1]) + 2),
+      j_begin(lattice.nearest(1, grid.y[0]) - 1),
+      j_end(lattice.nearest(1, grid.y[grid.height - 1]) + 2)
+{
+}
 
 bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid)
 {
@@ -235,7 +230,7 @@ bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRast
 void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
                               float* const out[3], bool add)
 {
-    const GridWindows needed(noise.lattice(), grid);
+    const LrpGridWindows needed(noise.lattice(), grid);
     thread_local LrpTerms scratch;
     lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add, [&](std::int64_t i, std::int64_t j) {
         scratch.count = 0;
@@ -250,7 +245,7 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
     if (method == LrpRasterMethod::automatic)
         method = lrp_raster_prefers_lattice_rows(noise, grid) ? LrpRasterMethod::lattice_rows : LrpRasterMethod::separable;
     if (method == LrpRasterMethod::lattice_rows) {
-        const GridWindows needed(noise.lattice(), grid);
+        const LrpGridWindows needed(noise.lattice(), grid);
         if (needed.i_begin >= terms.i_begin() && needed.i_end <= terms.i_end() && needed.j_begin >= terms.j_begin() &&
             needed.j_end <= terms.j_end())
             return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,

@@ -35,6 +35,13 @@ struct LrpRasterGrid {
     int height = 0;
 };
 
+/// The lattice points [i_begin, i_end) × [j_begin, j_end) whose 3×3 windows hold every pixel of
+/// the grid (nearest() never decreases along an axis: the grid's ends bound every pixel's).
+struct LrpGridWindows {
+    std::int64_t i_begin, i_end, j_begin, j_end;
+    LrpGridWindows(const LrpLattice& lattice, const LrpRasterGrid& grid);
+};
+
 /// How lrp_raster_stratum sums (the same values either way).
 enum class LrpRasterMethod {
     automatic,     ///< lattice_rows for windows narrower than lrp_lattice_row_spacing pixels, else separable

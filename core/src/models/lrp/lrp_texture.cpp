@@ -126,33 +126,17 @@ struct RegionTerms {
     bool cached = false;
     LrpTermCache& terms = thread_term_cache();
 
-    /// The region's lattice points [i0, i1] × [j0, j1].
-    struct Box {
-        std::int64_t i0, i1, j0, j1;
-        Box(const LrpLattice& lattice, const double x_ends[2], const double y_ends[2])
-            : i0(std::min(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) - 1),
-              i1(std::max(lattice.nearest(0, x_ends[0]), lattice.nearest(0, x_ends[1])) + 1),
-              j0(std::min(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) - 1),
-              j1(std::max(lattice.nearest(1, y_ends[0]), lattice.nearest(1, y_ends[1])) + 1)
-        {
-        }
-    };
-
     /// Whether drawing the region's windows once pays (not more than ~4 per pixel).
-    static bool pays(const LrpStratumNoise& stratum, const double x_ends[2], const double y_ends[2], std::size_t pixels)
+    static bool pays(const LrpGridWindows& box, std::size_t pixels)
     {
-        const Box box(stratum.lattice(), x_ends, y_ends);
-        return double(box.i1 - box.i0 + 1) * double(box.j1 - box.j0 + 1) <= 4.0 * double(pixels) + 64;
+        return double(box.i_end - box.i_begin) * double(box.j_end - box.j_begin) <= 4.0 * double(pixels) + 64;
     }
 
-    RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const double x_ends[2], const double y_ends[2],
-                std::size_t pixels)
+    RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpGridWindows& box, std::size_t pixels)
+        : cached(pays(box, pixels))
     {
-        const Box box(stratum.lattice(), x_ends, y_ends);
-        const std::int64_t i0 = box.i0, i1 = box.i1, j0 = box.j0, j1 = box.j1;
-        cached = pays(stratum, x_ends, y_ends, pixels);
         if (cached)
-            terms.fill(i0, j0, int(i1 - i0 + 1), int(j1 - j0 + 1),
+            terms.fill(box.i_begin, box.j_begin, int(box.i_end - box.i_begin), int(box.j_end - box.j_begin),
                        [&](std::int64_t i, std::int64_t j, LrpTerms& out) { stratum.draw(i, j, filter, out); });
     }
 };
@@ -180,12 +164,11 @@ RegionScratch& region_scratch()
 void stratum_values(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpRasterGrid& grid,
                     float* const out[3], bool add)
 {
-    const double x_ends[2] = {grid.x[0], grid.x[grid.width - 1]};
-    const double y_ends[2] = {grid.y[0], grid.y[grid.height - 1]};
     const std::size_t pixels = std::size_t(grid.width) * std::size_t(grid.height);
-    if (RegionTerms::pays(stratum, x_ends, y_ends, pixels) && lrp_raster_prefers_lattice_rows(stratum, grid))
+    const LrpGridWindows box(stratum.lattice(), grid);
+    if (RegionTerms::pays(box, pixels) && lrp_raster_prefers_lattice_rows(stratum, grid))
         return lrp_raster_stratum_drawn(stratum, filter, grid, out, add);
-    const RegionTerms region(stratum, filter, x_ends, y_ends, pixels);
+    const RegionTerms region(stratum, filter, box, pixels);
     if (region.cached) return lrp_raster_stratum(stratum, region.terms, grid, out, LrpRasterMethod::separable, add);
     for (int r = 0; r < grid.height; ++r)
         for (int k = 0; k < grid.width; ++k) {
