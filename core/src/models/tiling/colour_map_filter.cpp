@@ -113,16 +113,6 @@ const LineRule& line_rule(int count)
     return rules[std::size_t(std::clamp(count, 1, colour_map_kernels::max_nodes))];
 }
 
-const LineRule& uniform_line_rule(int count)
-{
-    static const std::vector<LineRule> rules = [] {
-        std::vector<LineRule> r;
-        for (int n = 0; n <= colour_map_kernels::max_nodes; ++n) r.push_back(uniform_rule(std::max(1, n)));
-        return r;
-    }();
-    return rules[std::size_t(std::clamp(count, 1, colour_map_kernels::max_nodes))];
-}
-
 /// The line's nodes: uniform ones no farther apart than `spacing_blurs` × the blur the table
 /// already has along the line (at least a texel: the raw map is bilinear), up to
 /// `equal_weight_nodes`; a line that would need more takes that many equal-weight nodes. 31:
@@ -455,7 +445,7 @@ Rgb ColourMapFilter::expected(double mean_a, double mean_b, const PairCovariance
     const double l21 = l11 > 0 ? covariance.ab / l11 : 0.0;
     const double l22 = std::sqrt(std::max(0.0, covariance.bb - l21 * l21));
     const int count = 64;
-    const LineRule& rule = uniform_line_rule(count);
+    static const LineRule rule = uniform_rule(count);
     double sum[3] = {0, 0, 0};
     for (int i = 0; i < count; ++i)
         for (int j = 0; j < count; ++j) {
