@@ -67,6 +67,12 @@ HistogramMode histogram_mode_from_string(const std::string& name)
 TextureDescription analyze(const Image& photo, const AnalysisOptions& options, const ProgressCallback& progress)
 {
     if (options.model == automatic_model) return analyze_choosing_model(photo, options, progress);
+    return analyze_one_model(photo, options, progress, nullptr);
+}
+
+TextureDescription analyze_one_model(const Image& photo, const AnalysisOptions& options,
+                                     const ProgressCallback& progress, const ComparisonReference* prepared_photo)
+{
     const Model& model = model_named(options.model, "analysis", "--model");
     if (!model.info().capabilities.analysis) throw Error("model '" + options.model + "' cannot analyse photos");
     // The model's own options first: a typo costs nothing.
@@ -143,14 +149,15 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options, c
 
     // Step 4: the model's own parameters (and its provenance options).
     report(0.5, "spectrum");
-    // The photo's side of the comparison is made at the first score and kept for the others.
+    // The photo's side of the comparison, unless the caller brought it, is made at the first
+    // score and kept for the others.
     std::once_flag photo_side_made;
     std::optional<ComparisonReference> photo_side;
     const auto score = [&](const ModelParameters& parameters, int max_side) {
-        std::call_once(photo_side_made, [&] { photo_side.emplace(photo); });
+        if (!prepared_photo) std::call_once(photo_side_made, [&] { photo_side.emplace(photo); });
         TextureDescription candidate = description;
         candidate.parameters = parameters;
-        return score_against_photo(candidate, *photo_side, max_side);
+        return score_against_photo(candidate, prepared_photo ? *prepared_photo : *photo_side, max_side);
     };
     const FitInput input{channels, photo.width, photo.height, colour, description.histograms, band_count, options,
                          std::move(model_options), score};

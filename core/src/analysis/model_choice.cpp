@@ -6,6 +6,8 @@
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
 
+#include "colour/chroma_given_brightness.h"
+#include "colour/colour_basis.h"
 #include "models/model.h"
 
 #include <algorithm>
@@ -91,6 +93,10 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     // when the caller left the choice open.
     std::vector<Candidate> candidates;
     std::set<std::string> declared_somewhere;
+    // A photo whose chroma does not vary (a grey one) has no joint colour to fit: its joint-colour
+    // candidate would be the plain one again, so it is not made.
+    const bool photo_has_joint_colour =
+        options.try_joint_colour && has_joint_colour_to_fit(decorrelate(photo, fit_colour_basis(photo, ColourMode::pca)));
     for (const Model* model : registered_models()) {
         if (!model->info().capabilities.analysis) continue;
         std::vector<ColourMode> modes{options.colour_mode};
@@ -101,7 +107,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         for (ColourMode mode : modes) {
             // Joint colour, where the caller left it open and the model can carry it: both ways
             // (it removes false colour, and on some photos costs spectrum fidelity).
-            const bool both = options.try_joint_colour && mode == ColourMode::pca && model->info().capabilities.joint_colour;
+            const bool both = photo_has_joint_colour && mode == ColourMode::pca && model->info().capabilities.joint_colour;
             for (bool joint : both ? std::vector<bool>{false, true} : std::vector<bool>{options.joint_colour}) {
                 Candidate& candidate = candidates.emplace_back();
                 candidate.model = model;
@@ -130,8 +136,8 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string label = model.name() + " (" + to_string(candidate.colour_mode) +
                                   (candidate.joint_colour ? ", joint colour" : "") + ")";
         try {
-            candidate.description =
-                analyze(photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options));
+            candidate.description = analyze_one_model(
+                photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options), nullptr, &photo_side);
             candidate.score = score_against_photo(candidate.description, photo_side, max_scoring_side);
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
@@ -141,14 +147,6 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string stage = label + " scored";
         progress(double(++finished) / double(candidates.size() + 1), stage.c_str());
     });
-
-    // A photo whose chroma does not vary has no joint colour to fit: that candidate is the plain
-    // one again, and is dropped rather than listed twice.
-    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                    [](const Candidate& c) {
-                                        return c.joint_colour && !c.description.chroma_given_brightness.enabled();
-                                    }),
-                     candidates.end());
 
     std::vector<ModelScore> scores;
     for (const Candidate& c : candidates) scores.push_back(c.score);

@@ -30,4 +30,11 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
                                           const ProgressCallback& progress);
 
+/// analyze() of one named model (not automatic_model) whose fit scores its own candidates
+/// (FitInput::score) against `prepared_photo`, the photo's side of the comparison already made by
+/// the caller (the choice makes it once for every candidate); nullptr: made at the first score.
+/// `prepared_photo` must be of `photo` itself.
+TextureDescription analyze_one_model(const Image& photo, const AnalysisOptions& options,
+                                     const ProgressCallback& progress, const ComparisonReference* prepared_photo);
+
 }  // namespace stochtex

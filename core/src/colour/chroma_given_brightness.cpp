@@ -11,16 +11,22 @@
 
 namespace stochtex {
 
+bool has_joint_colour_to_fit(const std::array<std::vector<float>, 3>& channels)
+{
+    if (channels[0].empty()) return false;
+    const double chroma_sigma = std::max(EmpiricalDistribution(channels[1]).stddev(), EmpiricalDistribution(channels[2]).stddev());
+    return EmpiricalDistribution(channels[0]).stddev() > 1e-7 && chroma_sigma > 1e-7;
+}
+
 ChromaGivenBrightness fit_chroma_given_brightness(std::array<std::vector<float>, 3>& channels, int knots, double z_max)
 {
     ChromaGivenBrightness curves;
     const std::vector<float>& brightness = channels[0];
     const std::size_t n = brightness.size();
-    if (n == 0 || knots < 2) return curves;
+    if (knots < 2 || !has_joint_colour_to_fit(channels)) return curves;
     const EmpiricalDistribution distribution(brightness);
-    std::array<double, 2> chroma_sigma{EmpiricalDistribution(channels[1]).stddev(),
-                                       EmpiricalDistribution(channels[2]).stddev()};
-    if (!(distribution.stddev() > 1e-7) || !(std::max(chroma_sigma[0], chroma_sigma[1]) > 1e-7)) return curves;
+    const std::array<double, 2> chroma_sigma{EmpiricalDistribution(channels[1]).stddev(),
+                                             EmpiricalDistribution(channels[2]).stddev()};
 
     // u: brightness as a standard-normal variate (ranks), what the model's channel 0 is.
     std::vector<float> u(n);

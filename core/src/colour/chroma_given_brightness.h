@@ -22,6 +22,11 @@
 
 namespace stochtex {
 
+/// Whether the decorrelated channels have joint colour to fit: brightness varies and so does a
+/// chroma channel (a grey photo's chroma axes are constant). fit_chroma_given_brightness() fits
+/// curves exactly when this holds.
+bool has_joint_colour_to_fit(const std::array<std::vector<float>, 3>& channels);
+
 /// Fits the curves to a photo's decorrelated channels (pca mode) and replaces channels 1 and 2
 /// by their residuals r_c = (y_c − location_c(u)) / scale_c(u), u = Φ⁻¹(F_0(y_0)) (scale_c in
 /// units of its RMS over the photo, so that r_c keeps its channel's typical spread), which the
