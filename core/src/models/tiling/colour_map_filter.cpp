@@ -1,5 +1,6 @@
 #include "models/tiling/colour_map_filter.h"
 
+#include "models/tiling/colour_map_diagonal_blur.h"
 #include "models/tiling/colour_map_kernels.h"
 
 #include <stochtex/error.h>
@@ -127,6 +128,26 @@ const LineRule& equal_weight_line_rule()
     return rule;
 }
 
+/// The rule of a line of squared length `length2` (texels²) on a table blurred by `blur2`
+/// (texels²) along it: nodes up to spacing_blurs blurs (or a texel) apart; beyond
+/// equal_weight_nodes, a table blurred by a texel or more (the integrand smooth at the nodes'
+/// spacing, where uniform nodes integrate better than equal weights' sparse tails) keeps up to
+/// 63 uniform ones, as before the equal-weight rule; a sharper one takes that rule.
+const LineRule& line_rule_for(double length2, double blur2)
+{
+    const double nodes2 = 64 * length2 / std::max(1.0, spacing_blurs * spacing_blurs * blur2);
+    return nodes2 <= double(equal_weight_nodes * equal_weight_nodes) || blur2 >= 1
+               ? line_rule(std::min(63, std::max(3, int(std::ceil(std::sqrt(nodes2))) | 1)))
+               : equal_weight_line_rule();
+}
+
+/// How far (texels², the larger of |var_a − |cov|| and |var_b − |cov||) a covariance may be
+/// from a line along a diagonal and still read the diagonal tables: 1 at the line, falling
+/// linearly to 0 here, the axis-aligned reading taking the rest. Within the zone the diagonal
+/// reading ignores an axis-aligned blur of at most a tenth of a texel; outside it nothing
+/// changes. The blend keeps the lookup continuous in Σ.
+constexpr double diagonal_zone = 0.01;
+
 /// A Gaussian of σ texels sampled at `count` evenly spaced centres over an axis of n texels
 /// (n a multiple of count), clamped to the edge; σ < 0 means the full average. The centres all
 /// have the same fractional position, so one set of weights serves every output sample.
@@ -225,7 +246,11 @@ ColourMapFilter::ColourMapFilter(const std::vector<float>& rgb, int size) : size
 
 Rgb ColourMapFilter::fetch(int level_a, int level_b, double a, double b) const
 {
-    const Blurred& m = table_[std::size_t(level_a) * levels_ + level_b];
+    return fetch(table_[std::size_t(level_a) * levels_ + level_b], a, b);
+}
+
+Rgb ColourMapFilter::fetch(const Blurred& m, double a, double b)
+{
     const double x = std::clamp(a * m.width - 0.5, 0.0, double(m.width - 1));
     const double y = std::clamp(b * m.height - 0.5, 0.0, double(m.height - 1));
     const int x0 = std::min(int(x), std::max(0, m.width - 2)), y0 = std::min(int(y), std::max(0, m.height - 2));
@@ -298,31 +323,63 @@ ColourMapFilter::Line ColourMapFilter::line(double mean_a, double mean_b, const 
         line.level_a = fractional_level(var_a), line.level_b = fractional_level(var_b);
         return line;
     }
+    auto nodes = [](const LineRule& rule, double alpha, double beta) {
+        Nodes n;
+        n.alpha = alpha, n.beta = beta;
+        n.node = rule.node.data(), n.weight = rule.weight.data(), n.count = rule.count;
+        n.node_float = rule.node_float.data(), n.weight_float = rule.weight_float.data();
+        return n;
+    };
+    // Σ = diag(var_a − |cov|, var_b − |cov|) + |cov| (1, ±1)(1, ±1)ᵀ: near a diagonal line the
+    // diagonal tables take it, at the level of the largest blur σ_k² ≤ |cov| (per axis), the
+    // rest |cov| − σ_k² by nodes along the diagonal (of length² 2 · rest, the table's blur along
+    // it 2 σ_k²: a few Gauss–Hermite nodes, at most 17 past the last level).
+    const double along = std::abs(cov);
+    const double rest = std::max(std::abs(var_a - along), std::abs(var_b - along));
+    if (rest < diagonal_zone) {
+        line.diagonal_weight = 1 - rest / diagonal_zone;
+        int level = 0;
+        double next = 1;  // σ²_(level+1) = 4^level
+        while (level < diagonal_levels() && next <= along) ++level, next *= 4;
+        const double blur2 = level == 0 ? 0.0 : 0.25 * next;
+        const int sign = cov < 0 ? -1 : 1;
+        // line_rule_for(2 (|cov| − σ_k²), 2 σ_k²) without its division and root (the
+        // smallest odd count n ≥ 3 with n² ≥ nodes²; never the equal-weight rule: on the raw
+        // map the rest is under a texel², under 128 nodes²).
+        const double rest2 = along - blur2, scale = std::max(1.0, spacing_blurs * spacing_blurs * 2 * blur2);
+        int count = 3;
+        while (count < 63 && double(count * count) * scale < 64 * 2 * rest2) count += 2;
+        const double step = std::sqrt(rest2);
+        line.diagonal = &diagonal_table(sign, level);
+        line.diagonal_nodes = nodes(line_rule(count), step, sign * step);
+        if (rest == 0) return line;  // the axis-aligned reading is not needed
+    }
     // Σ = diag(d) + u uᵀ: u = (α, ±β) with αβ = |cov| and α/β = r = sqrt(var_a / var_b) leaves
     // d = (var_a − α², var_b − β²) ≥ 0 (zero for a perfect correlation).
     const double magnitude = std::min(std::abs(cov), std::sqrt(var_a * var_b));
     const double r = std::sqrt(var_a / var_b);
     const double alpha2 = magnitude * r, beta2 = magnitude / r;
-    line.alpha = std::sqrt(alpha2);
-    line.beta = std::sqrt(beta2) * (cov < 0 ? -1 : 1);
+    const double alpha = std::sqrt(alpha2), beta = std::sqrt(beta2) * (cov < 0 ? -1 : 1);
     // d from the moments directly, not from α squared: a perfect correlation (var_a = var_b =
     // |cov|, a colour map indexed by one noise twice) then gives r = 1 and d = 0 exactly, one
     // table, where √(x)² − x left d ~ 1e-16 var — a blur level of ~1e-8, which costs four tables
     // per node for a weight that rounds away.
     const double d_a = std::max(0.0, var_a - alpha2), d_b = std::max(0.0, var_b - beta2);
     line.level_a = fractional_level(d_a), line.level_b = fractional_level(d_b);
-    // The blur along u is at least √min d: nodes up to spacing_blurs × that (or a texel) apart.
-    // Beyond equal_weight_nodes, a table blurred by a texel or more (the integrand smooth at the
-    // nodes' spacing, where uniform nodes integrate better than equal weights' sparse tails)
-    // keeps up to 63 uniform ones, as before the equal-weight rule; a sharper one takes that rule.
-    const double nodes2 = 64 * (alpha2 + beta2) / std::max(1.0, spacing_blurs * spacing_blurs * std::min(d_a, d_b));
-    const bool blurred = std::min(d_a, d_b) >= 1;
-    const LineRule& rule = nodes2 <= double(equal_weight_nodes * equal_weight_nodes) || blurred
-                               ? line_rule(std::min(63, std::max(3, int(std::ceil(std::sqrt(nodes2))) | 1)))
-                               : equal_weight_line_rule();
-    line.node = rule.node.data(), line.weight = rule.weight.data(), line.count = rule.count;
-    line.node_float = rule.node_float.data(), line.weight_float = rule.weight_float.data();
+    // The blur along u is at least √min d.
+    line.nodes = nodes(line_rule_for(alpha2 + beta2, std::min(d_a, d_b)), alpha, beta);
     return line;
+}
+
+const ColourMapFilter::Blurred& ColourMapFilter::diagonal_table(int sign, int level) const
+{
+    if (level == 0) return table_[0];
+    const int side = sign < 0 ? 1 : 0;
+    std::call_once(diagonal_->built[side], [&] {
+        for (std::vector<float>& rgb : diagonal_blurs(table_[0].rgb, size_, sign, diagonal_levels()))
+            diagonal_->tables[side].push_back(Blurred{size_, size_, std::move(rgb)});
+    });
+    return diagonal_->tables[side][std::size_t(level - 1)];
 }
 
 Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
@@ -336,15 +393,31 @@ Rgb ColourMapFilter::filtered(double mean_a, double mean_b, const PairCovariance
         return fetch(level(covariance.aa), level(covariance.bb), a, b);
     }
     const Line l = line(mean_a, mean_b, covariance, method);
-    if (l.alpha == 0 && l.beta == 0) return fetch_fractional(l.level_a, l.level_b, l.a, l.b);
-    const Fractional levels(*this, l.level_a, l.level_b);
-    double sum[3] = {0, 0, 0};
-    for (int k = 0; k < l.count; ++k) {
-        const double t = l.node[k];
-        const Rgb c = levels.fetch(std::clamp(l.a + t * l.alpha / size_, 0.0, 1.0), std::clamp(l.b + t * l.beta / size_, 0.0, 1.0));
-        for (int ch = 0; ch < 3; ++ch) sum[ch] += l.weight[k] * c[ch];
+    // Σ_k w_k · fetch(a + t_k α, b + t_k β).
+    auto along = [&](const Nodes& n, auto&& fetch_at) {
+        double sum[3] = {0, 0, 0};
+        for (int k = 0; k < n.count; ++k) {
+            const double t = n.node[k];
+            const Rgb c = fetch_at(std::clamp(l.a + t * n.alpha / size_, 0.0, 1.0), std::clamp(l.b + t * n.beta / size_, 0.0, 1.0));
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += n.weight[k] * c[ch];
+        }
+        return Rgb{float(sum[0]), float(sum[1]), float(sum[2])};
+    };
+    Rgb axis{};
+    if (l.diagonal_weight < 1) {
+        if (l.nodes.alpha == 0 && l.nodes.beta == 0) {
+            axis = fetch_fractional(l.level_a, l.level_b, l.a, l.b);
+        } else {
+            const Fractional levels(*this, l.level_a, l.level_b);
+            axis = along(l.nodes, [&](double a, double b) { return levels.fetch(a, b); });
+        }
+        if (l.diagonal_weight == 0) return axis;
     }
-    return {float(sum[0]), float(sum[1]), float(sum[2])};
+    const Rgb diagonal = along(l.diagonal_nodes, [&](double a, double b) { return fetch(*l.diagonal, a, b); });
+    if (l.diagonal_weight == 1) return diagonal;
+    Rgb out;
+    for (int c = 0; c < 3; ++c) out[c] = float((1 - l.diagonal_weight) * axis[c] + l.diagonal_weight * diagonal[c]);
+    return out;
 }
 
 namespace {
@@ -420,22 +493,59 @@ private:
 Rgb ColourMapFilter::lookup(double mean_a, double mean_b, const PairCovariance& covariance, ColourMapMethod method) const
 {
     if (method == ColourMapMethod::reference) return filtered(mean_a, mean_b, covariance, method);
-    const Line l = line(mean_a, mean_b, covariance, method);
-    const Packed levels(*this, l.level_a, l.level_b);
-    if (l.alpha == 0 && l.beta == 0) {
-        const Colour4 c = levels.fetch(l.a, l.b);
-        return {c[0], c[1], c[2]};
+    return read(line(mean_a, mean_b, covariance, method));
+}
+
+void ColourMapFilter::lookup_row(std::size_t count, const double* mean_a, const double* mean_b, const PairCovariance* covariance,
+                                 ColourMapMethod method, Rgb* out) const
+{
+    if (method == ColourMapMethod::reference) {
+        for (std::size_t i = 0; i < count; ++i) out[i] = filtered(mean_a[i], mean_b[i], covariance[i], method);
+        return;
     }
+    constexpr std::size_t chunk = 32;
+    Line lines[chunk];
+    for (std::size_t start = 0; start < count; start += chunk) {
+        const std::size_t n = std::min(chunk, count - start);
+        for (std::size_t i = 0; i < n; ++i) lines[i] = line(mean_a[start + i], mean_b[start + i], covariance[start + i], method);
+        for (std::size_t i = 0; i < n; ++i) out[start + i] = read(lines[i]);
+    }
+}
+
+Rgb ColourMapFilter::read(const Line& l) const
+{
     // Σ_k w_k · fetch(a + t_k α, b + t_k β) in single precision, the nodes' addresses and
     // corner weights vectorised across the nodes, summed in node order (colour_map_kernels.h).
-    colour_map_kernels::Table tables[3];
-    colour_map_kernels::LineNodes nodes{};
-    nodes.tables = tables, nodes.table_count = levels.kernel_tables(tables);
-    nodes.a = l.a, nodes.b = l.b, nodes.step_a = l.alpha / size_, nodes.step_b = l.beta / size_;
-    nodes.node = l.node_float, nodes.weight = l.weight_float, nodes.count = l.count;
-    float sum[3];
-    colour_map_kernels::line_sum(nodes, sum);
-    return {sum[0], sum[1], sum[2]};
+    auto along = [&](const Nodes& n, const colour_map_kernels::Table* tables, int table_count) {
+        colour_map_kernels::LineNodes nodes{};
+        nodes.tables = tables, nodes.table_count = table_count;
+        nodes.a = l.a, nodes.b = l.b, nodes.step_a = n.alpha / size_, nodes.step_b = n.beta / size_;
+        nodes.node = n.node_float, nodes.weight = n.weight_float, nodes.count = n.count;
+        Rgb sum;
+        colour_map_kernels::line_sum(nodes, sum.data());
+        return sum;
+    };
+    Rgb axis{};
+    if (l.diagonal_weight < 1) {
+        const Packed levels(*this, l.level_a, l.level_b);
+        if (l.nodes.alpha == 0 && l.nodes.beta == 0) {
+            const Colour4 c = levels.fetch(l.a, l.b);
+            axis = {c[0], c[1], c[2]};
+        } else {
+            colour_map_kernels::Table tables[3];
+            axis = along(l.nodes, tables, levels.kernel_tables(tables));
+        }
+        if (l.diagonal_weight == 0) return axis;
+    }
+    const Blurred& m = *l.diagonal;
+    const colour_map_kernels::Table table{m.rgb.data(), std::size_t(m.width) * 3, m.width, m.height,
+                                          std::max(0, m.width - 2), std::max(0, m.height - 2), 1.0f};
+    const Rgb diagonal = along(l.diagonal_nodes, &table, 1);
+    if (l.diagonal_weight == 1) return diagonal;
+    const float w = float(l.diagonal_weight);
+    Rgb out;
+    for (int c = 0; c < 3; ++c) out[c] = (1 - w) * axis[c] + w * diagonal[c];
+    return out;
 }
 
 Rgb ColourMapFilter::expected(double mean_a, double mean_b, const PairCovariance& covariance) const

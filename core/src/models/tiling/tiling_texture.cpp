@@ -172,6 +172,28 @@ void TilingTexture::eval_region(const RasterRegion& region, const RgbOutput& out
 void TilingTexture::colour_row(const float* packed, std::size_t count, const RgbOutput& out, std::size_t first, PlaneCache& cache) const
 {
     constexpr int record = PackedMomentPyramid::record;
+    if (output_ == TilingOutput::colour_map) {
+        // colour(unpack(record)) without the double Moments: the means made absolute as unpack()
+        // makes them, the three second moments read from their record lanes (packed_pairs(2)).
+        const PackedPairs pairs = packed_pairs(2);
+        int lane[2][2] = {};
+        for (int p = 0; p < pairs.count; ++p)
+            lane[pairs.first[std::size_t(p)]][pairs.second[std::size_t(p)]] = lane[pairs.second[std::size_t(p)]][pairs.first[std::size_t(p)]] =
+                2 + p;
+        const Moments& global = planes_[0].global();
+        cache.channels.resize(2 * count);
+        cache.covariance.resize(count);
+        cache.colours.resize(count);
+        double* a = cache.channels.data(), * b = a + count;
+        for (std::size_t i = 0; i < count; ++i) {
+            const float* r = packed + i * record;
+            a[i] = global.mean[0] + double(r[0]), b[i] = global.mean[1] + double(r[1]);
+            cache.covariance[i] = {double(r[lane[0][0]]), double(r[lane[0][1]]), double(r[lane[1][1]])};
+        }
+        colour_map_->lookup_row(count, a, b, cache.covariance.data(), options_.colour_map, cache.colours.data());
+        for (std::size_t i = 0; i < count; ++i) out.set(first + i, cache.colours[i]);
+        return;
+    }
     if (output_ != TilingOutput::colour) {
         for (std::size_t i = 0; i < count; ++i) out.set(first + i, colour(rasters_[0].unpack(packed + i * record)));
         return;

@@ -98,6 +98,8 @@ private:
         std::vector<double> x;
         std::vector<float> packed;
         std::vector<double> channels;  ///< colour_row's planar means and spreads
+        std::vector<PairCovariance> covariance;  ///< colour_row's colour-map covariances
+        std::vector<Rgb> colours;
         PlaneCache() = default;
         /// A cache for one evaluation (its taps share a few vertices).
         explicit PlaneCache(bool single) : workspace(single ? 2 : 6, single ? 2 : 4) {}
