@@ -47,6 +47,16 @@ ColourMapFilter linear_map(const std::string& name)
     return ColourMapFilter(map, 256);
 }
 
+/// Section 1's grid of lookups: spreads σ (σ_a), signs of the correlation and means (a, b).
+template <typename Visit>
+void for_each_spread_and_mean(const Visit& visit)
+{
+    for (double sigma : {0.003, 0.01, 0.03, 0.08, 0.15})
+        for (double sign : {-1.0, 1.0})
+            for (double ma : {0.35, 0.5, 0.62})
+                for (double mb : {0.4, 0.55}) visit(sigma, sign, ma, mb);
+}
+
 void lookup_table()
 {
     std::printf("## 1. The lookup alone: Ŝ(μ, Σ) (lookup()) vs E[S(N)] (expected())\n\n");
@@ -58,10 +68,7 @@ void lookup_table()
         for (double rho : {0.0, 0.6, 0.9, 0.99, 1.0}) {
             double error = 0, worst = 0, seconds = 0;
             int count = 0, calls = 0;
-            for (double sigma : {0.003, 0.01, 0.03, 0.08, 0.15})
-                for (double sign : {-1.0, 1.0})
-                    for (double ma : {0.35, 0.5, 0.62})
-                        for (double mb : {0.4, 0.55}) {
+            for_each_spread_and_mean([&](double sigma, double sign, double ma, double mb) {
                             const double ratio = rho == 1.0 ? 1.0 : 0.8;
                             const PairCovariance c{sigma * sigma, sign * rho * sigma * sigma * ratio, sigma * sigma * ratio * ratio};
                             const Rgb truth = map.expected(ma, mb, c);
@@ -74,7 +81,7 @@ void lookup_table()
                             if (sink < 0) std::printf("?");
                             const double e = distance(got, truth);
                             error += e, worst = std::max(worst, e), ++count;
-                        }
+                        });
             std::printf("| %s | %.2f | %.2f (%.1f) | %.0f |\n", name, rho, 1000 * error / count, 1000 * worst, 1e9 * seconds / calls);
         }
     }
@@ -94,10 +101,7 @@ void perfect_correlation_table()
         const ColourMapFilter map = linear_map(name);
         double error[2] = {0, 0}, worst[2] = {0, 0};
         int count = 0;
-        for (double sigma : {0.003, 0.01, 0.03, 0.08, 0.15})
-            for (double sign : {-1.0, 1.0})
-                for (double ma : {0.35, 0.5, 0.62})
-                    for (double mb : {0.4, 0.55}) {
+        for_each_spread_and_mean([&](double sigma, double sign, double ma, double mb) {
                         double sum[3] = {0, 0, 0}, total = 0;
                         constexpr int nodes = 20000;
                         for (int k = 0; k < nodes; ++k) {
@@ -112,7 +116,7 @@ void perfect_correlation_table()
                                              distance(map.expected(ma, mb, c), truth)};
                         for (int m = 0; m < 2; ++m) error[m] += e[m], worst[m] = std::max(worst[m], e[m]);
                         ++count;
-                    }
+                    });
         std::printf("| %s | %.2f (%.1f) | %.2f (%.1f) |\n", name, 1000 * error[0] / count, 1000 * worst[0], 1000 * error[1] / count,
                     1000 * worst[1]);
     }
