@@ -15,6 +15,7 @@
 #include <stochtex/texture.h>
 #include <stochtex/models/tiling.h>
 
+#include "photo_crop.h"
 #include "models/tiling/colour_map_filter.h"
 #include "models/tiling/colour_maps.h"
 
@@ -147,10 +148,7 @@ Rgb supersampled(const Texture& t, const Vec2& uv, const Footprint2D& f)
 void render_table(bool quick)
 {
     const Image photo = read_image_linear(STOCHTEX_SOURCE_DIR "/data/exemplars/concrete_512.png");
-    Image transposed = photo;
-    for (int y = 0; y < photo.height; ++y)
-        for (int x = 0; x < photo.width; ++x)
-            for (int c = 0; c < photo.channels; ++c) transposed.at(x, y, c) = photo.at(y, x, c);
+    const Image transposed = bench::transposed(photo);
     const TilingSourceOptions source;
     const std::pair<const char*, TextureDescription> textures[] = {
         {"colour map rgb, one photo twice (ρ = 1)", colour_mapped_texture(photo, photo, "rgb", source)},

@@ -1,4 +1,4 @@
-// stochtex benchmarks — the photo crops they measure on.
+// stochtex benchmarks — the photo crops (and rearrangements) they measure on.
 #pragma once
 
 #include <stochtex/image.h>
@@ -15,6 +15,18 @@ inline Image top_left_crop(const Image& image, int size)
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, c);
+    return out;
+}
+
+/// The square image mirrored about its diagonal: (x, y) takes (y, x). Paired with the photo
+/// itself as a colour map's two noises, it gives a nearly uncorrelated pair with the same
+/// statistics on both axes (the photo twice is a perfectly correlated one).
+inline Image transposed(const Image& image)
+{
+    Image out = image;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < image.channels; ++c) out.at(x, y, c) = image.at(y, x, c);
     return out;
 }
 

@@ -15,7 +15,9 @@
 //
 // A 512×512 raster at 4 exemplar pixels per pixel (the footprint estimator's 2×2 taps at pyramid
 // level 1), full colour, filtered; colour is concrete_512.png analysed with histograms on,
-// colour_map the same photo twice through the "rgb" map, phasor "phasor-square" at 1/16 cycle per
+// colour_map the same photo twice through the "rgb" map (a perfectly correlated pair, read on
+// tables pre-blurred along the diagonal), colour_map_pair the photo and its transpose (nearly
+// uncorrelated: the general line quadrature), phasor "phasor-square" at 1/16 cycle per
 // pixel (covariance filtering), ptm 256² random lrgb reflectance functions lit 40° off the
 // normal (ptm_unbounded: the same, tiled and blended).
 // Mpix/s = million filtered evaluations per second of wall time; Mpix/cpu-s = per second of CPU
@@ -35,6 +37,7 @@
 #include <sys/resource.h>
 
 #include "median_reporter.h"
+#include "photo_crop.h"
 #include "point_by_point.h"
 #include "colour/tabulated_colour_mapping.h"
 #include "models/tiling/tiling_texture.h"
@@ -69,6 +72,8 @@ const TextureDescription& description(const std::string& kind)
         d = analyze(photo, options);
     } else if (kind == "colour_map") {
         d = colour_mapped_texture(photo, photo, "rgb", source);
+    } else if (kind == "colour_map_pair") {
+        d = colour_mapped_texture(photo, bench::transposed(photo), "rgb", source);
     } else if (kind == "phasor") {
         d = phasor_texture("phasor-square", 1.0 / 16, source);
     } else {
@@ -247,6 +252,7 @@ STOCHTEX_RENDER(colour);
 STOCHTEX_RENDER_PREVIOUS(colour);
 STOCHTEX_RENDER(colour_map);
 STOCHTEX_RENDER_PREVIOUS(colour_map);
+STOCHTEX_RENDER(colour_map_pair);
 STOCHTEX_RENDER(phasor);
 STOCHTEX_RENDER_PREVIOUS(phasor);
 STOCHTEX_RENDER(ptm);
