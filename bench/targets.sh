@@ -23,7 +23,7 @@ run() {  # program filter: medians of the filtered benchmarks as JSON in $work/p
 }
 run wavelet_bench 'Render(2D|3D)/512x512/bands:8/hist:on/threads:'
 run gabor_bench 'Texture/gabor/|Noise/raster-2D-filtered/anisotropic/threads:1|Ref/Perlin3D'
-run tiling_bench 'Render/Raster/(colour|colour_map|colour_map_pair|phasor|ptm)/'
+run tiling_bench 'Render/(Raster/(colour|colour_map|colour_map_pair|phasor|ptm)|OneTap/colour)/'
 run lrp_bench 'Render2D/lrp/J:50,L:8'
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 
@@ -47,6 +47,7 @@ rows = [  # path, benchmark name with {t} for the thread count, target at 2 thre
     ("gabor texture solid", "Texture/gabor/solid/threads:{t}", 1),
     ("ptm relit", "Render/Raster/ptm/threads:{t}", 20),
     ("tiling colour", "Render/Raster/colour/threads:{t}", 40),
+    ("tiling colour, 1 tap (not the default)", "Render/OneTap/colour/threads:{t}", 40),
     ("tiling colour map, one photo twice", "Render/Raster/colour_map/threads:{t}", 15),
     ("tiling colour map, photo and transpose", "Render/Raster/colour_map_pair/threads:{t}", 15),
     ("tiling phasor", "Render/Raster/phasor/threads:{t}", 15),

@@ -10,6 +10,9 @@
 //                              and vertex cache shared along rows) and the reference colour-map
 //                              lookup (ColourMapFilter::filtered)
 //   Point/<kind>/threads:N    the same raster, one eval() per pixel (the reference)
+//   OneTap/<kind>/threads:N   tiling only: the raster with one tap per footprint (the paper's
+//                              single per-texel estimate) instead of the default 2×2 — what the
+//                              default's accuracy costs (docs/models/tiling.md, acceptance tables)
 //   Part/<kind>/...           one thread, per pixel: the filtered moments alone, the colour alone
 //                              (where the time goes)
 //
@@ -154,11 +157,14 @@ double process_cpu_seconds()
     return double(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) + 1e-6 * double(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
-enum class Path { raster, double_path, point };
+enum class Path { raster, double_path, point, one_tap };
 
 void Render(benchmark::State& state, const std::string& kind, Path path)
 {
-    const std::unique_ptr<Texture> texture = make_texture(description(kind));
+    TilingFilterOptions one_tap;
+    one_tap.sampling.taps = 1;
+    const std::unique_ptr<Texture> texture =
+        path == Path::one_tap ? std::make_unique<TilingTexture>(description(kind), one_tap) : make_texture(description(kind));
     const PointByPoint reference(*texture);
     const auto* tiling = dynamic_cast<const TilingTexture*>(texture.get());
     std::unique_ptr<DoublePath> previous;
@@ -167,14 +173,14 @@ void Render(benchmark::State& state, const std::string& kind, Path path)
         state.SkipWithError("not a tiling texture");
         return;
     }
-    const Texture& evaluated = path == Path::raster ? *texture : path == Path::point ? static_cast<const Texture&>(reference) : *previous;
+    const Texture& evaluated = path == Path::raster || path == Path::one_tap ? *texture : path == Path::point ? static_cast<const Texture&>(reference) : *previous;
     const RenderSettings settings = settings_for(*texture, int(state.range(0)));
     const double cpu_start = process_cpu_seconds();
     for (auto _ : state) benchmark::DoNotOptimize(render(evaluated, settings).pixels.data());
     const double pixels = double(settings.width) * settings.height;
     state.counters["Mpix/s"] = benchmark::Counter(pixels * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["Mpix/cpu-s"] = pixels * 1e-6 * double(state.iterations()) / std::max(1e-9, process_cpu_seconds() - cpu_start);
-    state.SetLabel(label(kind, path == Path::raster ? "eval_region" : path == Path::point ? "eval() per pixel" : "previous double path",
+    state.SetLabel(label(kind, path == Path::raster ? "eval_region" : path == Path::one_tap ? "eval_region, 1 tap" : path == Path::point ? "eval() per pixel" : "previous double path",
                          int(state.range(0))));
 }
 
@@ -249,6 +255,8 @@ BENCHMARK_CAPTURE(ColourStep, tabulated_row, ColourStepForm::row)->UseRealTime()
     BENCHMARK_CAPTURE(Render, Double/kind, std::string(#kind), Path::double_path)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond)
 
 STOCHTEX_RENDER(colour);
+BENCHMARK_CAPTURE(Render, OneTap/colour, std::string("colour"), Path::one_tap)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Render, OneTap/phasor, std::string("phasor"), Path::one_tap)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 STOCHTEX_RENDER_PREVIOUS(colour);
 STOCHTEX_RENDER(colour_map);
 STOCHTEX_RENDER_PREVIOUS(colour_map);
