@@ -10,9 +10,9 @@
 //                              and vertex cache shared along rows) and the reference colour-map
 //                              lookup (ColourMapFilter::filtered)
 //   Point/<kind>/threads:N    the same raster, one eval() per pixel (the reference)
-//   OneTap/<kind>/threads:N   tiling only: the raster with one tap per footprint (the paper's
-//                              single per-texel estimate) instead of the default 2×2 — what the
-//                              default's accuracy costs (docs/models/tiling.md, acceptance tables)
+//   OneTap/<kind>/threads:N   tiling only: the raster of the texture with filter_taps 1 (one tap
+//                              per footprint, the paper's single per-texel estimate) instead of the
+//                              default 2×2 — what the default's accuracy costs (docs/models/tiling.md)
 //   Part/<kind>/...           one thread, per pixel: the filtered moments alone, the colour alone
 //                              (where the time goes)
 //
@@ -161,10 +161,9 @@ enum class Path { raster, double_path, point, one_tap };
 
 void Render(benchmark::State& state, const std::string& kind, Path path)
 {
-    TilingFilterOptions one_tap;
-    one_tap.sampling.taps = 1;
-    const std::unique_ptr<Texture> texture =
-        path == Path::one_tap ? std::make_unique<TilingTexture>(description(kind), one_tap) : make_texture(description(kind));
+    TextureDescription d = description(kind);
+    if (path == Path::one_tap) d.parameters.get<TilingParameters>().filter_taps = 1;
+    const std::unique_ptr<Texture> texture = make_texture(d);
     const PointByPoint reference(*texture);
     const auto* tiling = dynamic_cast<const TilingTexture*>(texture.get());
     std::unique_ptr<DoublePath> previous;

@@ -492,6 +492,83 @@ TEST(TilingCli, AnalyzeInfoRenderAndPhasor)
     EXPECT_TRUE(test::contains(bad.err, "needs a tiling texture with output normal_map")) << bad;
 }
 
+TEST(TilingFilterTaps, DefaultFilesOmitTheFieldAndOtherCountsRoundTrip)
+{
+    // Absent means 2 (files written before the field existed read as they rendered), and a
+    // default texture does not write it, so its file stays byte for byte what it was.
+    const TextureDescription d = colour_tiling();
+    EXPECT_EQ(d.parameters.get<TilingParameters>().filter_taps, 2);
+    const std::string text = format_stex(d);
+    EXPECT_FALSE(test::contains(text, "filter_taps"));
+    TextureDescription one = d;
+    one.parameters.get<TilingParameters>().filter_taps = 1;
+    const std::string one_text = format_stex(one);
+    EXPECT_TRUE(test::contains(one_text, "\"filter_taps\": 1")) << one_text.substr(0, 400);
+    EXPECT_EQ(parse_stex(one_text, "t.stex").parameters.get<TilingParameters>().filter_taps, 1);
+    EXPECT_EQ(format_stex(parse_stex(one_text, "t.stex")), one_text);
+}
+
+TEST(TilingFilterTaps, OutOfRangeCountsAreErrorsNamingTheField)
+{
+    EXPECT_EQ(edited_error([](Json& j) { j["parameters"]["filter_taps"] = 0; }),
+              "t.stex: parameters.filter_taps: expected an integer in [1, 4], got 0");
+    EXPECT_EQ(edited_error([](Json& j) { j["parameters"]["filter_taps"] = 5; }),
+              "t.stex: parameters.filter_taps: expected an integer in [1, 4], got 5");
+    EXPECT_FALSE(edited_error([](Json& j) { j["parameters"]["filter_taps"] = 1.5; }).empty());
+    EXPECT_FALSE(edited_error([](Json& j) { j["parameters"]["filter_taps"] = "1"; }).empty());
+    TextureDescription bad = colour_tiling();
+    bad.parameters.get<TilingParameters>().filter_taps = 9;
+    EXPECT_EQ(error_of([&] { validate(bad, "t.stex"); }), "t.stex: parameters.filter_taps: must be in [1, 4], got 9");
+    TilingSourceOptions options;
+    options.exemplar_size = 32;
+    options.filter_taps = 0;
+    EXPECT_EQ(error_of([&] { phasor_texture("phasor-square", 1.0 / 8, options); }), "filter taps must be in [1, 4], got 0");
+}
+
+TEST(TilingFilterTaps, TheFilesCountIsTheEstimatorsTaps)
+{
+    // make_texture (what the plugin, render and bake use) filters with the file's taps: a
+    // filter_taps 1 file gives the one-tap estimator's values bit for bit, on the raster path and
+    // per point, and not the default's.
+    TextureDescription one = colour_tiling();
+    one.parameters.get<TilingParameters>().filter_taps = 1;
+    TilingFilterOptions one_tap;
+    one_tap.sampling.taps = 1;
+    const std::unique_ptr<Texture> from_file = make_texture(one);
+    const TilingTexture ablation(colour_tiling(), one_tap);
+    const std::unique_ptr<Texture> default_taps = make_texture(colour_tiling());
+    RenderSettings settings;
+    settings.width = settings.height = 48;
+    settings.units_per_pixel = 4.0 / one.pixels_per_unit;  // 4 exemplar pixels: several taps by default
+    settings.filter = true;
+    const Image file_render = render(*from_file, settings), ablation_render = render(ablation, settings);
+    EXPECT_EQ(file_render.pixels, ablation_render.pixels);
+    EXPECT_NE(file_render.pixels, render(*default_taps, settings).pixels);
+    const Footprint2D footprint = Footprint2D::square(settings.units_per_pixel);
+    for (int k = 0; k < 16; ++k) {
+        const Vec2 uv{0.013 + 0.071 * k, 0.4 - 0.023 * k};
+        EXPECT_EQ(from_file->eval(uv, footprint), ablation.eval(uv, footprint)) << k;
+    }
+}
+
+TEST(TilingFilterTaps, TheCommandsStoreTheCount)
+{
+    const std::string dir = test::temp_dir("tiling_filter_taps");
+    const std::string stex = dir + "/t.stex", phasor = dir + "/p.stex";
+    const auto analyze = test::run_program({STOCHTEX_CLI, "analyze", test::repo_exemplar("concrete_512.png"), "-o", stex,
+                                            "--model", "tiling", "--exemplar-size", "32", "--filter-taps", "1"}, dir);
+    ASSERT_TRUE(analyze.succeeded()) << analyze;
+    EXPECT_EQ(read_stex(stex).parameters.get<TilingParameters>().filter_taps, 1);
+    const auto made = test::run_program(
+        {STOCHTEX_CLI, "tiling", "phasor", "-o", phasor, "--exemplar-size", "32", "--filter-taps", "3"}, dir);
+    ASSERT_TRUE(made.succeeded()) << made;
+    EXPECT_EQ(read_stex(phasor).parameters.get<TilingParameters>().filter_taps, 3);
+    const auto bad = test::run_program({STOCHTEX_CLI, "analyze", test::repo_exemplar("concrete_512.png"), "-o", dir + "/b.stex",
+                                        "--model", "tiling", "--filter-taps", "5"}, dir);
+    EXPECT_EQ(bad.code, 1) << bad;
+    EXPECT_TRUE(test::contains(bad.err, "--filter-taps: must be an integer in [1, 4], got '5'")) << bad;
+}
+
 TEST(TilingSharedExemplars, GravelKeepsItsHistogram)
 {
     const std::string path = test::shared_exemplar("gravel.png");

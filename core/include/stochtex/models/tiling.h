@@ -6,6 +6,7 @@
 #include <stochtex/image.h>
 #include <stochtex/texture.h>
 #include <stochtex/texture_description.h>
+#include <stochtex/models/tiling_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -20,6 +21,7 @@ struct TilingSourceOptions {
     std::uint32_t seed = 1;
     double unit_size_m = 1.0;
     std::string source_name;  ///< recorded in the provenance
+    int filter_taps = TilingParameters::default_filter_taps;  ///< stored as TilingParameters::filter_taps
 };
 
 /// Colour map names for the options below: green, rgb, phasor-sine, phasor-square, phasor-sawtooth.

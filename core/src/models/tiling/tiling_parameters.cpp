@@ -157,6 +157,21 @@ ParameterSchema<TilingParameters> tiling_schema()
                   {"0.288675", "exemplar widths", "The triangle grid's edge in widths of the exemplar's shorter side; "
                                                   "stochtex writes 1/(2√3) (Deliot–Heitz): hexagonal tiles ≈ 0.58 exemplar "
                                                   "widths across."});
+    ParameterInfo filter_taps{"filter_taps", "integer", "[1, " + std::to_string(P::max_filter_taps) + "]",
+                              std::to_string(P::default_filter_taps), "taps per axis",
+                              "The footprint estimator's taps per footprint axis (taps × taps texel estimates on an isotropic "
+                              "footprint, combined by the law of total variance): 2 halves the filtered mean's error of 1, the "
+                              "paper's single per-texel estimate, which renders ≈ 2.4× faster. Written only when not 2.",
+                              {}};
+    schema.optional_custom(
+        filter_taps, [](const P& p) { return p.filter_taps != P::default_filter_taps; },
+        [](const Field& f, P& p, const ReadContext&) { p.filter_taps = int(f.integer(1, P::max_filter_taps)); },
+        [](const P& p) { return Json(p.filter_taps); },
+        [](const P& p, const std::string& path, const std::string& source) {
+            if (p.filter_taps < 1 || p.filter_taps > P::max_filter_taps)
+                json_fields::fail(source, path, "must be in [1, " + std::to_string(P::max_filter_taps) + "], got " +
+                                                    std::to_string(p.filter_taps));
+        });
     ParameterInfo exemplar{"exemplar", "image", "", "", "",
                            "3 channels for colour, 2 otherwise; periodic (tiles are cut anywhere, with wrap); sides "
                            "powers of two in [16, 1024]. For colour, a channel with a histogram map holds standard-normal "

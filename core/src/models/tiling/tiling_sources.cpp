@@ -38,6 +38,9 @@ void check_options(const TilingSourceOptions& options)
                     std::to_string(max_tiling_exemplar_side) + "], got " + std::to_string(options.exemplar_size));
     if (options.bits != 8 && options.bits != 16) throw Error("exemplar bits must be 8 or 16, got " + std::to_string(options.bits));
     if (!(options.unit_size_m > 0) || !std::isfinite(options.unit_size_m)) throw Error("unit size must be a positive number of metres");
+    if (options.filter_taps < 1 || options.filter_taps > TilingParameters::max_filter_taps)
+        throw Error("filter taps must be in [1, " + std::to_string(TilingParameters::max_filter_taps) + "], got " +
+                    std::to_string(options.filter_taps));
 }
 
 /// The periodic centred crop of a photo's luminance, at the options' exemplar size.
@@ -59,6 +62,7 @@ TextureDescription describe_source(TilingParameters parameters, int source_width
     d.pixels_per_unit = parameters.exemplar.width;
     d.unit_size_m = options.unit_size_m;
     d.colour_mode = ColourMode::rgb;
+    parameters.filter_taps = options.filter_taps;
     d.parameters = std::move(parameters);
     Provenance& provenance = d.provenance;
     provenance.source = options.source_name;
@@ -68,6 +72,8 @@ TextureDescription describe_source(TilingParameters parameters, int source_width
     provenance.tool = "stochtex " STOCHTEX_VERSION;
     provenance.options = {{"model", "tiling"}, {"source", kind}, {"exemplar_size", std::to_string(options.exemplar_size)},
                           {"exemplar_bits", std::to_string(options.bits)}, {"seed", std::to_string(options.seed)}};
+    if (options.filter_taps != TilingParameters::default_filter_taps)  // (default files stay as they were)
+        provenance.options.push_back({"filter_taps", std::to_string(options.filter_taps)});
     // The colour mean is informational for these outputs: the texture's own limit of minification.
     const Rgb mean = make_texture(d)->mean();
     d.mean = {mean[0], mean[1], mean[2]};

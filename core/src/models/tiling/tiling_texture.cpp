@@ -38,13 +38,25 @@ std::shared_ptr<const MomentPyramid> tiling_pyramid(const TilingParameters& para
     return std::make_shared<const MomentPyramid>(dequantise(e), e.width, e.height);
 }
 
+TilingFilterOptions filter_options(const TilingParameters& parameters)
+{
+    TilingFilterOptions options;
+    options.sampling.taps = parameters.filter_taps;
+    return options;
+}
+
+TilingTexture::TilingTexture(const TextureDescription& description)
+    : TilingTexture(description, nullptr, filter_options(description.parameters.get<TilingParameters>()))
+{
+}
+
 TilingTexture::TilingTexture(const TextureDescription& description, const TilingFilterOptions& options)
     : TilingTexture(description, nullptr, options)
 {
 }
 
-TilingTexture::TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options)
-    : TilingTexture(description, &period, options)
+TilingTexture::TilingTexture(const TextureDescription& description, const Vec2& period)
+    : TilingTexture(description, &period, filter_options(description.parameters.get<TilingParameters>()))
 {
 }
 

@@ -53,12 +53,17 @@ struct TilingFilterOptions {
     FootprintSampling sampling;
     ColourMapMethod colour_map = ColourMapMethod::covariance;
 };
+/// The filtering a tiling description asks for: the defaults with its filter_taps.
+TilingFilterOptions filter_options(const TilingParameters& parameters);
 
 class TilingTexture final : public Texture {
 public:
-    explicit TilingTexture(const TextureDescription& description, const TilingFilterOptions& options = {});
+    /// Filtered as the description says (its filter_taps).
+    explicit TilingTexture(const TextureDescription& description);
+    /// Filtered as `options` say, whatever the description's filter_taps (the ablations).
+    TilingTexture(const TextureDescription& description, const TilingFilterOptions& options);
     /// The periodic form: eval() repeats every period[0] in u and period[1] in v.
-    TilingTexture(const TextureDescription& description, const Vec2& period, const TilingFilterOptions& options = {});
+    TilingTexture(const TextureDescription& description, const Vec2& period);
     TilingTexture(const TilingTexture&) = delete;  // rasters_ refer to planes_ and packed_
     TilingTexture& operator=(const TilingTexture&) = delete;
 
