@@ -196,6 +196,10 @@ TEST(OslTilingShader, ColourOutputMatchesCore)
 {
     expect_agreement(compare(colour_tiling(HistogramMode::on), 500, "colour, histograms"));
     expect_agreement(compare(colour_tiling(HistogramMode::off), 250, "colour, Gaussian"));
+    // A file's filter_taps reaches the shader as its `taps` parameter.
+    TextureDescription one_tap = colour_tiling(HistogramMode::on);
+    one_tap.parameters.get<TilingParameters>().filter_taps = 1;
+    expect_agreement(compare(one_tap, 250, "colour, filter_taps 1"));
 }
 
 TEST(OslTilingShader, NormalMapOutputMatchesCore)
