@@ -486,7 +486,7 @@ private:
         tables_[std::size_t(count_++)] = {m.rgb.data(), std::size_t(m.width) * 3, m.width, m.height, std::max(0, m.width - 2),
                                           std::max(0, m.height - 2), splat4(float(weight))};
     }
-    std::array<Table, 3> tables_{};
+    std::array<Table, 3> tables_;  // the first count_ set by add() (not value-initialised: a rep stos per lookup)
     int count_ = 0;
 };
 
