@@ -77,8 +77,7 @@ TilingRaster::TilingRaster(const TilingNoise& noise, const PackedMomentPyramid& 
 namespace {
 tiling_raster::LevelGeometry geometry(const PackedMomentPyramid::Level& l)
 {
-    const double width = double(l.mask_x + 1), height = double(l.mask_y + 1);
-    return {l.scale_x, l.scale_y, width, height, 1 / width, 1 / height, double(l.row)};
+    return {l.scale_x, l.scale_y, std::int32_t(l.mask_x), std::int32_t(l.mask_y), std::int32_t(l.row)};
 }
 }  // namespace
 
@@ -154,18 +153,22 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
             const double c_first = floor_exact((x[0] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_last = floor_exact((x[count - 1] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_min = std::min(c_first, c_last), c_max = std::max(c_first, c_last);
-            const std::size_t columns = std::size_t(c_max - c_min) + 2;
-            ws.rows_.resize(4 * columns);
+            const std::size_t columns = std::size_t(c_max - c_min) + 2, entries = tiling_raster::vertex_entries(columns);
+            // The vertex tables: entry r · columns + c for vertex (c_min + c, cy + r); x then y.
+            ws.rows_.assign(2 * entries, 0.0);
             double* rows = ws.rows_.data();
             const std::int64_t vj = std::int64_t(cy), vi = std::int64_t(c_min);
-            for (std::size_t c = 0; c < columns; ++c)
-                for (int r = 0; r < 2; ++r) {
+            for (int r = 0; r < 2; ++r)
+                for (std::size_t c = 0; c < columns; ++c) {
                     const double* t = translation(vi + std::int64_t(c), vj + r, ws);
-                    rows[std::size_t(2 * r) * columns + c] = t[0];
-                    rows[std::size_t(2 * r + 1) * columns + c] = t[1];
+                    rows[std::size_t(r) * columns + c] = t[0];
+                    rows[entries + std::size_t(r) * columns + c] = t[1];
                 }
+            ws.vertex_fy_.resize(2 * entries);
+            ws.vertex_rows_.resize(4 * entries);
             row.i_min = c_min, row.columns = columns;
-            row.row0_x = rows, row.row0_y = rows + columns, row.row1_x = rows + 2 * columns, row.row1_y = rows + 3 * columns;
+            row.translation_x = rows, row.translation_y = rows + entries;
+            row.vertex_fy = ws.vertex_fy_.data(), row.vertex_rows = ws.vertex_rows_.data();
             row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
             tiling_raster::TileReads reads{};
             for (int t = 0; t < 3; ++t) {

@@ -104,6 +104,8 @@ public:
         std::uint64_t mask_i_, mask_j_;
         int shift_j_;
         std::vector<double> x_, rows_;
+        std::vector<float> vertex_fy_;
+        std::vector<std::int32_t> vertex_rows_;
         std::vector<std::int32_t> offsets_;
         std::vector<float> fractions_;
     };

@@ -19,39 +19,116 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::tiling_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// PlanTapRow's loop, the row tables' entries read by `read(table, column)` (table 0–3: row0_x,
-/// row0_y, row1_x, row1_y).
-template <class Read>
-void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
+/// One axis of a bilinear lookup at p (TapRow): the fraction float(l − l0), l = p · scale − ½,
+/// l0 = floor(l), and the texel l0 mod (mask + 1) as int64(l0) & mask (ConvertTo is exact for
+/// |l0| < 2^63; the low 32 bits are all the mask keeps).
+template <class DD>
+struct Axis {
+    hn::Vec<hn::Rebind<float, DD>> fraction;
+    hn::Vec<hn::Rebind<std::int32_t, DD>> texel;
+};
+template <class DD>
+HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, double scale, std::int32_t mask)
+{
+    const hn::Rebind<float, DD> df;
+    const hn::Rebind<std::int32_t, DD> d32;
+    const hn::Rebind<std::uint32_t, DD> du32;
+    const auto l = hn::Sub(hn::Mul(p, hn::Set(dd, scale)), hn::Set(dd, 0.5));
+    const auto l0 = hn::Floor(l);
+    const auto whole = hn::BitCast(hn::RebindToUnsigned<DD>(), hn::ConvertTo(hn::RebindToSigned<DD>(), l0));
+    return {hn::DemoteTo(df, hn::Sub(l, l0)), hn::And(hn::BitCast(d32, hn::TruncateTo(du32, whole)), hn::Set(d32, mask))};
+}
+
+/// The y side of every vertex entry's lookups (TapRow): fy at vertex_fy + level · entries, the
+/// offsets of rows iy and iy + 1 at vertex_rows + (2 · level + r) · entries.
+void VertexRows(const TapRow& row)
+{
+    const hn::ScalableTag<double> dd;
+    const hn::Rebind<float, decltype(dd)> df;
+    const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const std::size_t lanes = hn::Lanes(dd), entries = vertex_entries(row.columns);
+    const auto y = hn::Set(dd, row.y);
+    const auto one = hn::Set(d32, 1);
+    for (int level = 0; level < (row.has_upper ? 2 : 1); ++level) {
+        const LevelGeometry& g = level == 0 ? row.lower : row.upper;
+        const auto records = hn::Set(d32, 8 * g.row), mask = hn::Set(d32, g.mask_y);
+        for (std::size_t e = 0; e < entries; e += lanes) {
+            const auto axis = AxisAt(dd, hn::Add(y, hn::LoadU(dd, row.translation_y + e)), g.scale_y, g.mask_y);
+            hn::StoreU(axis.fraction, df, row.vertex_fy + std::size_t(level) * entries + e);
+            hn::StoreU(hn::Mul(axis.texel, records), d32, row.vertex_rows + std::size_t(2 * level) * entries + e);
+            hn::StoreU(hn::Mul(hn::And(hn::Add(axis.texel, one), mask), records), d32,
+                       row.vertex_rows + std::size_t(2 * level + 1) * entries + e);
+        }
+    }
+}
+
+/// A vertex table read by gathers (Table's interface, for rows whose tables are too long to
+/// hold in registers).
+template <class D>
+class Gathered {
+public:
+    Gathered(D, const hn::TFromD<D>* values, std::size_t) : values_(values) {}
+    static bool fits(D, std::size_t) { return true; }
+    hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const { return hn::GatherIndex(d, values_, index); }
+
+private:
+    const hn::TFromD<D>* values_;
+};
+
+/// A tap row's vertex tables held as Table (PairTable, SmallTable, Gathered): the translations'
+/// x, and per level fy and the two rows' offsets (VertexRows; the upper level's empty without one).
+template <template <class> class Table>
+struct VertexTables {
+    using DD = hn::ScalableTag<double>;
+    using DF = hn::Rebind<float, DD>;
+    using D32 = hn::Rebind<std::int32_t, DD>;
+    static bool fits(std::size_t columns) { return Table<DD>::fits(DD(), 2 * columns); }
+    explicit VertexTables(const TapRow& row)
+        : entries(vertex_entries(row.columns)), upper(row.has_upper ? 2 * row.columns : 0), x(DD(), row.translation_x, 2 * row.columns),
+          fy{{DF(), row.vertex_fy, 2 * row.columns}, {DF(), row.vertex_fy + entries, upper}},
+          rows{{D32(), row.vertex_rows, 2 * row.columns},
+               {D32(), row.vertex_rows + entries, 2 * row.columns},
+               {D32(), row.vertex_rows + 2 * entries, upper},
+               {D32(), row.vertex_rows + 3 * entries, upper}}
+    {
+    }
+    std::size_t entries, upper;
+    Table<DD> x;
+    Table<DF> fy[2];
+    Table<D32> rows[4];
+};
+
+/// PlanTapRow's loop, the vertex tables read through `tables` (VertexTables).
+template <class Tables>
+void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& tables)
 {
     const hn::ScalableTag<double> dd;
     const hn::RebindToSigned<decltype(dd)> di;
+    const hn::RebindToUnsigned<decltype(dd)> du;
     const hn::Rebind<float, decltype(dd)> df;
     const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const hn::Rebind<std::uint32_t, decltype(dd)> du32;
     const std::size_t lanes = hn::Lanes(dd);
-    const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5), zero = hn::Zero(dd);
-    const auto fy = hn::Set(dd, row.fy), y = hn::Set(dd, row.y), i_min = hn::Set(dd, row.i_min);
+    const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5);
+    const auto fy = hn::Set(dd, row.fy), i_min = hn::Set(dd, row.i_min);
     const auto shift = hn::Mul(half, hn::Set(dd, row.sy)), inverse_edge = hn::Set(dd, row.inverse_edge_x);
-    const auto eight = hn::Set(dd, 8.0), a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
+    const auto a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
     const auto one_f = hn::Set(df, 1.0f);
-    // One level's lookup of tile k at p, q: the two record offsets, the fractions and their complements.
-    auto lookup = [&](const LevelGeometry& g, hn::Vec<decltype(dd)> p, hn::Vec<decltype(dd)> q, std::int32_t* o0, std::int32_t* o1,
-                      float* fx, float* fyo, float* gx, float* gy, std::size_t i) {
-        const auto lx = hn::Sub(hn::Mul(p, hn::Set(dd, g.scale_x)), half), ly = hn::Sub(hn::Mul(q, hn::Set(dd, g.scale_y)), half);
-        const auto x0 = hn::Floor(lx), y0 = hn::Floor(ly);
-        const auto tx = hn::DemoteTo(df, hn::Sub(lx, x0)), ty = hn::DemoteTo(df, hn::Sub(ly, y0));
-        hn::StoreU(tx, df, fx + i);
+    const auto one_64 = hn::Set(di, 1), columns = hn::Set(di, std::int64_t(row.columns));
+    // One level's lookup of tile k at p (vertex entry e): the two record offsets, the fractions
+    // and their complements.
+    auto lookup = [&](int level, hn::Vec<decltype(dd)> p, hn::Vec<decltype(d32)> e, std::int32_t* o0, std::int32_t* o1, float* fx,
+                      float* fyo, float* gx, float* gy, std::size_t i) {
+        const LevelGeometry& g = level == 0 ? row.lower : row.upper;
+        const auto axis = AxisAt(dd, p, g.scale_x, g.mask_x);
+        hn::StoreU(axis.fraction, df, fx + i);
+        hn::StoreU(hn::Sub(one_f, axis.fraction), df, gx + i);
+        const auto ty = tables.fy[level](df, e);
         hn::StoreU(ty, df, fyo + i);
-        hn::StoreU(hn::Sub(one_f, tx), df, gx + i);
         hn::StoreU(hn::Sub(one_f, ty), df, gy + i);
-        const auto width = hn::Set(dd, g.width), height = hn::Set(dd, g.height);
-        const auto ix = hn::Sub(x0, hn::Mul(width, hn::Floor(hn::Mul(x0, hn::Set(dd, g.inverse_width)))));
-        const auto iy = hn::Sub(y0, hn::Mul(height, hn::Floor(hn::Mul(y0, hn::Set(dd, g.inverse_height)))));
-        const auto next = hn::Add(iy, one);
-        const auto jy = hn::IfThenElse(hn::Ge(next, height), zero, next);
-        const auto records = hn::Set(dd, g.row);
-        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(iy, records), ix), eight)), d32, o0 + i);
-        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(jy, records), ix), eight)), d32, o1 + i);
+        const auto column = hn::ShiftLeft<3>(axis.texel);
+        hn::StoreU(hn::Add(tables.rows[2 * level](d32, e), column), d32, o0 + i);
+        hn::StoreU(hn::Add(tables.rows[2 * level + 1](d32, e), column), d32, o1 + i);
     };
     for (std::size_t i = 0; i < row.n; i += lanes) {
         const auto x = hn::Add(hn::Add(hn::LoadU(dd, row.x + i), a), b);
@@ -65,21 +142,21 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
         const auto inverse_norm =
             hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(b0, b0), hn::Mul(b1, b1)), hn::Mul(b2, b2))));
         const hn::Vec<decltype(dd)> weights[3] = {hn::Mul(b0, inverse_norm), hn::Mul(b1, inverse_norm), hn::Mul(b2, inverse_norm)};
-        // Translation columns c = cx − i_min and c + 1 in both vertex rows.
+        // The tiles' vertex entries: column c = cx − i_min (exact: a small integer) and c + 1,
+        // row j or j + 1; as int64 for the translations, as int32 for the other tables.
         const auto c = hn::ConvertTo(di, hn::Sub(cx, i_min));
-        const auto c1 = hn::Add(c, hn::Set(di, 1));
-        const auto t0x = hn::IfThenElse(upper, read(2, c1), read(0, c));
-        const auto t0y = hn::IfThenElse(upper, read(3, c1), read(1, c));
-        const hn::Vec<decltype(dd)> tx[3] = {t0x, read(0, c1), read(2, c)};
-        const hn::Vec<decltype(dd)> ty[3] = {t0y, read(1, c1), read(3, c)};
+        const auto below = hn::Add(c, columns);
+        const hn::Vec<decltype(di)> entry[3] = {hn::IfThenElse(hn::RebindMask(di, upper), hn::Add(below, one_64), c), hn::Add(c, one_64),
+                                                below};
         for (int k = 0; k < 3; ++k) {
             const auto w = hn::DemoteTo(df, weights[k]);
             hn::StoreU(w, df, out.weight[k] + i);
             hn::StoreU(hn::Mul(w, w), df, out.weight_squared[k] + i);
-            const auto p = hn::Add(x, tx[k]), q = hn::Add(y, ty[k]);
-            lookup(row.lower, p, q, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], out.gx[k], out.gy[k], i);
+            const auto p = hn::Add(x, tables.x(dd, entry[k]));
+            const auto e = hn::BitCast(d32, hn::TruncateTo(du32, hn::BitCast(du, entry[k])));
+            lookup(0, p, e, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], out.gx[k], out.gy[k], i);
             if (row.has_upper)
-                lookup(row.upper, p, q, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], out.upper_gx[k],
+                lookup(1, p, e, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], out.upper_gx[k],
                        out.upper_gy[k], i);
         }
     }
@@ -88,17 +165,16 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
 void PlanTapRow(const TapRow& row, const TileReads& out)
 {
     // A row's tables span a few vertex columns (a 64-pixel chunk at 4 exemplar pixels per pixel:
-    // about 5): in registers, read by permutations, where they fit; else gathered.
-    const hn::ScalableTag<double> dd;
-    using Table = small_table::HWY_NAMESPACE::SmallTable<decltype(dd)>;
-    const double* tables[4] = {row.row0_x, row.row0_y, row.row1_x, row.row1_y};
-    if (Table::fits(dd, row.columns)) {
-        const Table small[4] = {{dd, tables[0], row.columns}, {dd, tables[1], row.columns}, {dd, tables[2], row.columns},
-                                {dd, tables[3], row.columns}};
-        PlanTapRowWith(row, out, [&](int table, auto column) { return small[table](dd, column); });
-    } else {
-        PlanTapRowWith(row, out, [&](int table, auto column) { return hn::GatherIndex(dd, tables[table], column); });
-    }
+    // about 5, 10 entries): in registers, read by permutations, where they fit; else gathered.
+    using small_table::HWY_NAMESPACE::PairTable;
+    using small_table::HWY_NAMESPACE::SmallTable;
+    VertexRows(row);
+    if (VertexTables<PairTable>::fits(row.columns))
+        PlanTapRowWith(row, out, VertexTables<PairTable>(row));
+    else if (VertexTables<SmallTable>::fits(row.columns))
+        PlanTapRowWith(row, out, VertexTables<SmallTable>(row));
+    else
+        PlanTapRowWith(row, out, VertexTables<Gathered>(row));
 }
 
 /// SetTableIndices' result for tag D (Highway 1.0 names no such type).

@@ -40,10 +40,13 @@ struct RecordPairs<3> {
 /// A pyramid level's geometry for the address stage (PackedMomentPyramid::Level).
 struct LevelGeometry {
     double scale_x, scale_y;          ///< texels per level-0 pixel
-    double width, height;             ///< texels (powers of two)
-    double inverse_width, inverse_height;
-    double row;                       ///< records per row (width + 1)
+    std::int32_t mask_x, mask_y;      ///< width − 1, height − 1 (sides are powers of two)
+    std::int32_t row;                 ///< records per row (width + 1)
 };
+
+/// Entries of a tap row's vertex tables for `columns` vertex columns: both vertex rows, padded
+/// to whole vectors.
+constexpr std::size_t vertex_entries(std::size_t columns) { return (2 * columns + max_lanes - 1) / max_lanes * max_lanes; }
 
 /// One tap row. Triangle (TilingGrid::blend's geometry with reciprocals): sy = (y / edge_y) ·
 /// 2/√3 and fy = sy − floor(sy) are the row's; per tap position x sx = x · (1/edge_x) − ½ sy,
@@ -51,23 +54,27 @@ struct LevelGeometry {
 /// (cx + 1, j), (cx, j + 1) with B = (1 − fx − fy, fx, fy), else (cx + 1, j + 1), (cx + 1, j),
 /// (cx, j + 1) with B = (fx + fy − 1, 1 − fy, 1 − fx); w = B · (1 / √(B·B)).
 /// Tile k reads the exemplar at (x + T_x, y + T_y), T the vertex's translation, read from the
-/// row tables: row0 for vertex row j, row1 for j + 1, column c at vertex column i_min + c.
+/// vertex tables: entry c for vertex (i_min + c, j), entry columns + c for (i_min + c, j + 1).
 /// Lookup (MomentPyramid::sample_level_linear's centres and wrap): lx = p · scale_x − ½,
 /// x0 = floor(lx), fx = float(lx − x0), ix = x0 − width · floor(x0 / width), likewise y; the
 /// records read are at (iy · row + ix) · 8 and ((iy + 1 mod height) · row + ix) · 8 floats.
+/// The y side of a lookup (y + T_y, fy, iy, its row's offsets) depends on the vertex alone, y
+/// being the row's: it is computed once per vertex entry, into the scratch tables, and read
+/// by the lanes as the translations are; ix is int64(x0) & (width − 1), the same integer for
+/// |x0| < 2^63.
 struct TapRow {
     const double* x;  ///< n pixel positions (n a multiple of max_lanes); the tap's are (x + a) + b
     std::size_t n;
     double a, b;      ///< the tap's offset along the footprint's axes (x components)
     double y, sy, fy, inverse_edge_x;
     double i_min;
-    std::size_t columns;  ///< entries of each row table
-    const double* row0_x;
-    const double* row0_y;
-    const double* row1_x;
-    const double* row1_y;
+    std::size_t columns;            ///< vertex columns: 2 · columns vertex entries
+    const double* translation_x;    ///< vertex_entries(columns) entries (the padding any value)
+    const double* translation_y;
     LevelGeometry lower, upper;
     bool has_upper;
+    float* vertex_fy;               ///< scratch: 2 · vertex_entries(columns) floats
+    std::int32_t* vertex_rows;      ///< scratch: 4 · vertex_entries(columns) offsets
 };
 
 /// Where tile k (0–2) of position i reads: at lower (and upper) level, the record offsets of
