@@ -126,15 +126,12 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
         return;
     }
     const std::size_t lanes = (count + tiling_raster::max_lanes - 1) / tiling_raster::max_lanes * tiling_raster::max_lanes;
-    // Address-stage buffers, per tap and tile a run of `chunk` per field (the first `lanes` used):
-    // offsets (row iy, row iy + 1, and the upper level's), fractions (x, y, upper x, upper y), the
-    // weight, the fractions' complements and the weight squared (tiling_raster::TapSums).
+    // Address-stage buffers (tiling_raster::OffsetField, FractionField): per tap and tile a
+    // run of `chunk` per field, the first `lanes` used.
     const std::size_t runs = std::size_t(n_taps) * 3;
     ws.x_.resize(lanes);
-    ws.offsets_.resize(runs * 4 * chunk);
-    ws.fractions_.resize(runs * 10 * chunk);
-    auto offsets = [&](std::size_t run, int field) { return ws.offsets_.data() + (run * 4 + std::size_t(field)) * chunk; };
-    auto fractions = [&](std::size_t run, int field) { return ws.fractions_.data() + (run * 10 + std::size_t(field)) * chunk; };
+    ws.offsets_.resize(runs * tiling_raster::offset_fields * chunk);
+    ws.fractions_.resize(runs * tiling_raster::fraction_fields * chunk);
     const TilingGrid& grid = noise_.grid();
     static const double two_over_sqrt3 = 2 / std::sqrt(3.0);
     for (std::size_t l = 0; l < lanes; ++l) ws.x_[l] = x[std::min(l, count - 1)];  // padded with the last position
@@ -170,18 +167,8 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
             row.translation_x = rows, row.translation_y = rows + entries;
             row.vertex_fy = ws.vertex_fy_.data(), row.vertex_rows = ws.vertex_rows_.data();
             row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
-            tiling_raster::TileReads reads{};
-            for (int t = 0; t < 3; ++t) {
-                const std::size_t run = std::size_t(k) * 3 + std::size_t(t);
-                reads.offset0[t] = offsets(run, 0), reads.offset1[t] = offsets(run, 1);
-                reads.upper_offset0[t] = offsets(run, 2), reads.upper_offset1[t] = offsets(run, 3);
-                reads.fx[t] = fractions(run, 0), reads.fy[t] = fractions(run, 1);
-                reads.upper_fx[t] = fractions(run, 2), reads.upper_fy[t] = fractions(run, 3);
-                reads.weight[t] = fractions(run, 4);
-                reads.gx[t] = fractions(run, 5), reads.gy[t] = fractions(run, 6);
-                reads.upper_gx[t] = fractions(run, 7), reads.upper_gy[t] = fractions(run, 8);
-                reads.weight_squared[t] = fractions(run, 9);
-            }
+            const tiling_raster::TileReads reads{ws.offsets_.data() + std::size_t(k) * 3 * tiling_raster::offset_fields * chunk,
+                                                 ws.fractions_.data() + std::size_t(k) * 3 * tiling_raster::fraction_fields * chunk};
             tiling_raster::plan_tap_row(row, reads);
         }
     // The lookups and the mixture, position by position.

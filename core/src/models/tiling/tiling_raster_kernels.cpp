@@ -19,9 +19,21 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::tiling_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+/// int64 of whole-number doubles of magnitude below 2^63: ConvertTo, on AVX-512 without
+/// Highway's fix-up of lanes that overflow (four instructions fewer; their results differ only
+/// there).
+template <class DD>
+HWY_INLINE hn::Vec<hn::RebindToSigned<DD>> WholeToInt64(DD, hn::Vec<DD> v)
+{
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+    if constexpr (hn::MaxLanes(DD()) == 8) return hn::Vec<hn::RebindToSigned<DD>>{_mm512_cvttpd_epi64(v.raw)};
+#endif
+    return hn::ConvertTo(hn::RebindToSigned<DD>(), v);
+}
+
 /// One axis of a bilinear lookup at p (TapRow): the fraction float(l − l0), l = p · scale − ½,
-/// l0 = floor(l), and the texel l0 mod (mask + 1) as int64(l0) & mask (ConvertTo is exact for
-/// |l0| < 2^63; the low 32 bits are all the mask keeps).
+/// l0 = floor(l), and the texel l0 mod (mask + 1) as int64(l0) & mask (for |l0| < 2^63; the
+/// low 32 bits are all the mask keeps).
 template <class DD>
 struct Axis {
     hn::Vec<hn::Rebind<float, DD>> fraction;
@@ -35,7 +47,7 @@ HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, double scale, std::int32_t mask
     const hn::Rebind<std::uint32_t, DD> du32;
     const auto l = hn::Sub(hn::Mul(p, hn::Set(dd, scale)), hn::Set(dd, 0.5));
     const auto l0 = hn::Floor(l);
-    const auto whole = hn::BitCast(hn::RebindToUnsigned<DD>(), hn::ConvertTo(hn::RebindToSigned<DD>(), l0));
+    const auto whole = hn::BitCast(hn::RebindToUnsigned<DD>(), WholeToInt64(dd, l0));
     return {hn::DemoteTo(df, hn::Sub(l, l0)), hn::And(hn::BitCast(d32, hn::TruncateTo(du32, whole)), hn::Set(d32, mask))};
 }
 
@@ -98,8 +110,8 @@ struct VertexTables {
     Table<D32> rows[4];
 };
 
-/// PlanTapRow's loop, the vertex tables read through `tables` (VertexTables).
-template <class Tables>
+/// PlanTapRow's loop for one level or two, the vertex tables read through `tables` (VertexTables).
+template <bool Upper, class Tables>
 void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& tables)
 {
     const hn::ScalableTag<double> dd;
@@ -115,20 +127,21 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& table
     const auto a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
     const auto one_f = hn::Set(df, 1.0f);
     const auto one_64 = hn::Set(di, 1), columns = hn::Set(di, std::int64_t(row.columns));
-    // One level's lookup of tile k at p (vertex entry e): the two record offsets, the fractions
-    // and their complements.
-    auto lookup = [&](int level, hn::Vec<decltype(dd)> p, hn::Vec<decltype(d32)> e, std::int32_t* o0, std::int32_t* o1, float* fx,
-                      float* fyo, float* gx, float* gy, std::size_t i) {
+    // One level's lookup at p (vertex entry e) into tile k's fields: the two record offsets,
+    // the fractions and their complements.
+    auto lookup = [&](int level, hn::Vec<decltype(dd)> p, hn::Vec<decltype(d32)> e, std::int32_t* offsets, float* fractions) {
         const LevelGeometry& g = level == 0 ? row.lower : row.upper;
         const auto axis = AxisAt(dd, p, g.scale_x, g.mask_x);
-        hn::StoreU(axis.fraction, df, fx + i);
-        hn::StoreU(hn::Sub(one_f, axis.fraction), df, gx + i);
         const auto ty = tables.fy[level](df, e);
-        hn::StoreU(ty, df, fyo + i);
-        hn::StoreU(hn::Sub(one_f, ty), df, gy + i);
+        auto store = [&](int field, hn::Vec<decltype(df)> v) { hn::StoreU(v, df, fractions + std::size_t(field) * chunk); };
+        store(level == 0 ? lower_fx : upper_fx, axis.fraction);
+        store(level == 0 ? lower_gx : upper_gx, hn::Sub(one_f, axis.fraction));
+        store(level == 0 ? lower_fy : upper_fy, ty);
+        store(level == 0 ? lower_gy : upper_gy, hn::Sub(one_f, ty));
         const auto column = hn::ShiftLeft<3>(axis.texel);
-        hn::StoreU(hn::Add(tables.rows[2 * level](d32, e), column), d32, o0 + i);
-        hn::StoreU(hn::Add(tables.rows[2 * level + 1](d32, e), column), d32, o1 + i);
+        const int row0 = level == 0 ? lower_row0 : upper_row0;
+        hn::StoreU(hn::Add(tables.rows[2 * level](d32, e), column), d32, offsets + std::size_t(row0) * chunk);
+        hn::StoreU(hn::Add(tables.rows[2 * level + 1](d32, e), column), d32, offsets + std::size_t(row0 + 1) * chunk);
     };
     for (std::size_t i = 0; i < row.n; i += lanes) {
         const auto x = hn::Add(hn::Add(hn::LoadU(dd, row.x + i), a), b);
@@ -144,22 +157,33 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& table
         const hn::Vec<decltype(dd)> weights[3] = {hn::Mul(b0, inverse_norm), hn::Mul(b1, inverse_norm), hn::Mul(b2, inverse_norm)};
         // The tiles' vertex entries: column c = cx − i_min (exact: a small integer) and c + 1,
         // row j or j + 1; as int64 for the translations, as int32 for the other tables.
-        const auto c = hn::ConvertTo(di, hn::Sub(cx, i_min));
+        const auto c = WholeToInt64(dd, hn::Sub(cx, i_min));
         const auto below = hn::Add(c, columns);
         const hn::Vec<decltype(di)> entry[3] = {hn::IfThenElse(hn::RebindMask(di, upper), hn::Add(below, one_64), c), hn::Add(c, one_64),
                                                 below};
+        HWY_UNROLL(3)
         for (int k = 0; k < 3; ++k) {
+            std::int32_t* offsets = out.offsets + std::size_t(k * offset_fields) * chunk + i;
+            float* fractions = out.fractions + std::size_t(k * fraction_fields) * chunk + i;
             const auto w = hn::DemoteTo(df, weights[k]);
-            hn::StoreU(w, df, out.weight[k] + i);
-            hn::StoreU(hn::Mul(w, w), df, out.weight_squared[k] + i);
+            hn::StoreU(w, df, fractions + std::size_t(weight) * chunk);
+            hn::StoreU(hn::Mul(w, w), df, fractions + std::size_t(weight_squared) * chunk);
             const auto p = hn::Add(x, tables.x(dd, entry[k]));
             const auto e = hn::BitCast(d32, hn::TruncateTo(du32, hn::BitCast(du, entry[k])));
-            lookup(0, p, e, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], out.gx[k], out.gy[k], i);
-            if (row.has_upper)
-                lookup(1, p, e, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], out.upper_gx[k],
-                       out.upper_gy[k], i);
+            lookup(0, p, e, offsets, fractions);
+            if (Upper) lookup(1, p, e, offsets, fractions);
         }
     }
+}
+
+/// PlanTapRowWith for the row's level count.
+template <class Tables>
+void PlanTapRowOf(const TapRow& row, const TileReads& out, const Tables& tables)
+{
+    if (row.has_upper)
+        PlanTapRowWith<true>(row, out, tables);
+    else
+        PlanTapRowWith<false>(row, out, tables);
 }
 
 void PlanTapRow(const TapRow& row, const TileReads& out)
@@ -170,11 +194,11 @@ void PlanTapRow(const TapRow& row, const TileReads& out)
     using small_table::HWY_NAMESPACE::SmallTable;
     VertexRows(row);
     if (VertexTables<PairTable>::fits(row.columns))
-        PlanTapRowWith(row, out, VertexTables<PairTable>(row));
+        PlanTapRowOf(row, out, VertexTables<PairTable>(row));
     else if (VertexTables<SmallTable>::fits(row.columns))
-        PlanTapRowWith(row, out, VertexTables<SmallTable>(row));
+        PlanTapRowOf(row, out, VertexTables<SmallTable>(row));
     else
-        PlanTapRowWith(row, out, VertexTables<Gathered>(row));
+        PlanTapRowOf(row, out, VertexTables<Gathered>(row));
 }
 
 /// SetTableIndices' result for tag D (Highway 1.0 names no such type).
@@ -281,8 +305,8 @@ std::size_t AccumulateVectors(const TapSums& s, std::size_t first, std::size_t c
             auto sum = hn::Zero(d);
             for (int tile = 0; tile < 3; ++tile) {
                 const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                const std::int32_t* offsets = s.offsets + run * 4 * chunk + l;
-                const float* fractions = s.fractions + run * 10 * chunk + l;
+                const std::int32_t* offsets = s.offsets + run * offset_fields * chunk + l;
+                const float* fractions = s.fractions + run * fraction_fields * chunk + l;
                 auto field = [&](int f) { return layout.factor(fractions + std::size_t(f) * chunk); };
                 auto bilinear = [&](const float* data, int row, int fraction) {
                     hn::Vec<typename L::D> row0[2], row1[2];
@@ -339,8 +363,8 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     const hn::CappedTag<float, record> df;
     const int step = int(hn::Lanes(df)), parts = record / step;
     const int taps = Taps > 0 ? Taps : s.taps;
-    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * chunk; };
-    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 10 + std::size_t(field)) * chunk; };
+    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * offset_fields + std::size_t(field)) * chunk; };
+    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * fraction_fields + std::size_t(field)) * chunk; };
     const auto level_t = hn::Set(df, s.t);
     hn::Mask<decltype(df)> part_means[record];  // the mean lanes of each part of a record
     for (int h = 0; h < parts; ++h) part_means[h] = hn::FirstN(df, std::size_t(std::max(0, Channels - h * step)));

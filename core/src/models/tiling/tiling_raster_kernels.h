@@ -77,33 +77,25 @@ struct TapRow {
     std::int32_t* vertex_rows;      ///< scratch: 4 · vertex_entries(columns) offsets
 };
 
-/// Where tile k (0–2) of position i reads: at lower (and upper) level, the record offsets of
-/// the texel pair of rows iy and iy + 1, the fractions f and their complements 1 − f (in
-/// float, as the lookup uses them); w its blend weight (float) and w · w.
+/// The address stage's buffers, as TilingRaster::estimate_chunk lays them out: run r = 3 · tap +
+/// tile holds `chunk` values per field, offsets at offsets + (offset_fields · r + f) · chunk,
+/// fractions at fractions + (fraction_fields · r + f) · chunk. Per tile: at the lower (and upper)
+/// level, the record offsets of the texel pair of rows iy and iy + 1, the fractions and their
+/// complements 1 − f (in float, as the lookup uses them); the blend weight w (float) and w · w.
+enum OffsetField { lower_row0, lower_row1, upper_row0, upper_row1, offset_fields };
+enum FractionField { lower_fx, lower_fy, upper_fx, upper_fy, weight, lower_gx, lower_gy, upper_gx, upper_gy, weight_squared, fraction_fields };
+
+/// Where the three tiles of a tap row read: the tap's runs (3 · tap + tile, tile 0–2), from
+/// position 0; the upper level's fields are written when has_upper.
 struct TileReads {
-    std::int32_t* offset0[3];
-    std::int32_t* offset1[3];
-    float* fx[3];
-    float* fy[3];
-    std::int32_t* upper_offset0[3];  ///< used when has_upper
-    std::int32_t* upper_offset1[3];
-    float* upper_fx[3];
-    float* upper_fy[3];
-    float* weight[3];
-    float* gx[3];  ///< 1 − fx, and so on
-    float* gy[3];
-    float* upper_gx[3];
-    float* upper_gy[3];
-    float* weight_squared[3];
+    std::int32_t* offsets;
+    float* fractions;
 };
 
 void plan_tap_row(const TapRow& row, const TileReads& out);
 
-/// The lookups and the mixture of `count` positions from plan_tap_row's reads, stored as
-/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `chunk` values per
-/// field, offsets at offsets + (4 r + f) · chunk (f: lower row iy, lower row iy + 1, upper, upper),
-/// fractions at fractions + (10 r + f) · chunk (f: lower x, lower y, upper x, upper y, weight,
-/// then the four fractions' complements and the weight squared).
+/// The lookups and the mixture of `count` positions from plan_tap_row's reads (OffsetField,
+/// FractionField).
 /// Per position and tap, the three tiles' bilinear records (8 floats: lane-wise, in
 /// vectors of up to 8), blended towards the upper level by t, are summed as w · (means + w ·
 /// moments) · record (`means` 1 on the mean lanes, 0 on the moment lanes); the taps then
