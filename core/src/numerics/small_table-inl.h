@@ -47,15 +47,22 @@ hn::Vec<D> TwoTablesLookup(D d, hn::Vec<D> low, hn::Vec<D> high, hn::Vec<hn::Reb
     return hn::IfThenElse(in_high, hn::TableLookupLanes(high, lane), hn::TableLookupLanes(low, lane));
 }
 
-/// Vectors 0 … n − 1 of `values` (count of them, the rest zero).
+/// Vectors 0 … n − 1 of `values`: count entries, the rest zero; the first `readable` ≥ count
+/// entries may be read as whole vectors (a caller's padding: their values are never looked up).
 template <class D>
-void LoadTable(D d, const hn::TFromD<D>* values, std::size_t count, hn::Vec<D>* vectors, std::size_t n)
+void LoadTable(D d, const hn::TFromD<D>* values, std::size_t count, std::size_t readable, hn::Vec<D>* vectors, std::size_t n)
 {
     const std::size_t lanes = hn::Lanes(d);
     for (std::size_t v = 0; v < n; ++v) {
-        hn::TFromD<D> chunk[hn::MaxLanes(D())] = {};
-        for (std::size_t k = 0; k < lanes && v * lanes + k < count; ++k) chunk[k] = values[v * lanes + k];
-        vectors[v] = hn::LoadU(d, chunk);
+        if ((v + 1) * lanes <= readable) {
+            vectors[v] = hn::LoadU(d, values + v * lanes);
+        } else if (v * lanes < count) {
+            hn::TFromD<D> chunk[hn::MaxLanes(D())] = {};
+            for (std::size_t k = 0; k < lanes && v * lanes + k < count; ++k) chunk[k] = values[v * lanes + k];
+            vectors[v] = hn::LoadU(d, chunk);
+        } else {
+            vectors[v] = hn::Zero(d);
+        }
     }
 }
 
@@ -68,9 +75,11 @@ class SmallTable {
 public:
     using T = hn::TFromD<D>;
     static constexpr std::size_t max_vectors = 4;
-    SmallTable(D d, const T* values, std::size_t count) : vectors_((count + hn::Lanes(d) - 1) / hn::Lanes(d))
+    /// `readable` as LoadTable's.
+    SmallTable(D d, const T* values, std::size_t count, std::size_t readable = 0)
+        : vectors_((count + hn::Lanes(d) - 1) / hn::Lanes(d))
     {
-        LoadTable(d, values, count, table_, max_vectors);
+        LoadTable(d, values, count, readable, table_, max_vectors);
     }
     static bool fits(D d, std::size_t count) { return count <= max_vectors * hn::Lanes(d); }
     hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const
@@ -106,7 +115,7 @@ template <class D>
 class PairTable {
 public:
     using T = hn::TFromD<D>;
-    PairTable(D d, const T* values, std::size_t count) { LoadTable(d, values, count, table_, 2); }
+    PairTable(D d, const T* values, std::size_t count, std::size_t readable = 0) { LoadTable(d, values, count, readable, table_, 2); }
     static bool fits(D d, std::size_t count) { return count <= 2 * hn::Lanes(d); }
     hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const { return TwoTablesLookup(d, table_[0], table_[1], index); }
 

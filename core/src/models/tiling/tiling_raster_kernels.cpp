@@ -40,15 +40,15 @@ struct Axis {
     hn::Vec<hn::Rebind<std::int32_t, DD>> texel;
 };
 template <class DD>
-HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, double scale, std::int32_t mask)
+HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, hn::Vec<DD> scale, hn::Vec<hn::Rebind<std::int32_t, DD>> mask)
 {
     const hn::Rebind<float, DD> df;
     const hn::Rebind<std::int32_t, DD> d32;
     const hn::Rebind<std::uint32_t, DD> du32;
-    const auto l = hn::Sub(hn::Mul(p, hn::Set(dd, scale)), hn::Set(dd, 0.5));
+    const auto l = hn::Sub(hn::Mul(p, scale), hn::Set(dd, 0.5));
     const auto l0 = hn::Floor(l);
     const auto whole = hn::BitCast(hn::RebindToUnsigned<DD>(), WholeToInt64(dd, l0));
-    return {hn::DemoteTo(df, hn::Sub(l, l0)), hn::And(hn::BitCast(d32, hn::TruncateTo(du32, whole)), hn::Set(d32, mask))};
+    return {hn::DemoteTo(df, hn::Sub(l, l0)), hn::And(hn::BitCast(d32, hn::TruncateTo(du32, whole)), mask)};
 }
 
 /// The y side of every vertex entry's lookups (TapRow): fy at vertex_fy + level · entries, the
@@ -64,8 +64,9 @@ void VertexRows(const TapRow& row)
     for (int level = 0; level < (row.has_upper ? 2 : 1); ++level) {
         const LevelGeometry& g = level == 0 ? row.lower : row.upper;
         const auto records = hn::Set(d32, 8 * g.row), mask = hn::Set(d32, g.mask_y);
+        const auto scale = hn::Set(dd, g.scale_y);
         for (std::size_t e = 0; e < entries; e += lanes) {
-            const auto axis = AxisAt(dd, hn::Add(y, hn::LoadU(dd, row.translation_y + e)), g.scale_y, g.mask_y);
+            const auto axis = AxisAt(dd, hn::Add(y, hn::LoadU(dd, row.translation_y + e)), scale, mask);
             hn::StoreU(axis.fraction, df, row.vertex_fy + std::size_t(level) * entries + e);
             hn::StoreU(hn::Mul(axis.texel, records), d32, row.vertex_rows + std::size_t(2 * level) * entries + e);
             hn::StoreU(hn::Mul(hn::And(hn::Add(axis.texel, one), mask), records), d32,
@@ -79,7 +80,7 @@ void VertexRows(const TapRow& row)
 template <class D>
 class Gathered {
 public:
-    Gathered(D, const hn::TFromD<D>* values, std::size_t) : values_(values) {}
+    Gathered(D, const hn::TFromD<D>* values, std::size_t, std::size_t) : values_(values) {}
     static bool fits(D, std::size_t) { return true; }
     hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const { return hn::GatherIndex(d, values_, index); }
 
@@ -96,15 +97,17 @@ struct VertexTables {
     using D32 = hn::Rebind<std::int32_t, DD>;
     static bool fits(std::size_t columns) { return Table<DD>::fits(DD(), 2 * columns); }
     explicit VertexTables(const TapRow& row)
-        : entries(vertex_entries(row.columns)), upper(row.has_upper ? 2 * row.columns : 0), x(DD(), row.translation_x, 2 * row.columns),
-          fy{{DF(), row.vertex_fy, 2 * row.columns}, {DF(), row.vertex_fy + entries, upper}},
-          rows{{D32(), row.vertex_rows, 2 * row.columns},
-               {D32(), row.vertex_rows + entries, 2 * row.columns},
-               {D32(), row.vertex_rows + 2 * entries, upper},
-               {D32(), row.vertex_rows + 3 * entries, upper}}
+        : entries(vertex_entries(row.columns)), used(2 * row.columns), upper(row.has_upper ? used : 0),
+          upper_entries(row.has_upper ? entries : 0), x(DD(), row.translation_x, used, entries),
+          fy{{DF(), row.vertex_fy, used, entries}, {DF(), row.vertex_fy + entries, upper, upper_entries}},
+          rows{{D32(), row.vertex_rows, used, entries},
+               {D32(), row.vertex_rows + entries, used, entries},
+               {D32(), row.vertex_rows + 2 * entries, upper, upper_entries},
+               {D32(), row.vertex_rows + 3 * entries, upper, upper_entries}}
     {
     }
-    std::size_t entries, upper;
+    std::size_t entries, used;               ///< per table: padded (vertex_entries), in use (2 · columns)
+    std::size_t upper, upper_entries;        ///< the upper level's: 0 without one
     Table<DD> x;
     Table<DF> fy[2];
     Table<D32> rows[4];
@@ -112,7 +115,7 @@ struct VertexTables {
 
 /// PlanTapRow's loop for one level or two, the vertex tables read through `tables` (VertexTables).
 template <bool Upper, class Tables>
-void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& tables)
+void PlanTapRowWith(const TapRow& row, const TileReads& reads, const Tables& tables)
 {
     const hn::ScalableTag<double> dd;
     const hn::RebindToSigned<decltype(dd)> di;
@@ -127,12 +130,17 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& table
     const auto a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
     const auto one_f = hn::Set(df, 1.0f);
     const auto one_64 = hn::Set(di, 1), columns = hn::Set(di, std::int64_t(row.columns));
+    // The tables and the levels' constants as locals, so that they stay in registers (the
+    // compiler cannot tell the stores from them otherwise).
+    const Tables t = tables;
+    const TileReads out = reads;
+    const hn::Vec<decltype(dd)> scale[2] = {hn::Set(dd, row.lower.scale_x), hn::Set(dd, row.upper.scale_x)};
+    const hn::Vec<decltype(d32)> mask[2] = {hn::Set(d32, row.lower.mask_x), hn::Set(d32, row.upper.mask_x)};
     // One level's lookup at p (vertex entry e) into tile k's fields: the two record offsets,
     // the fractions and their complements.
     auto lookup = [&](int level, hn::Vec<decltype(dd)> p, hn::Vec<decltype(d32)> e, std::int32_t* offsets, float* fractions) {
-        const LevelGeometry& g = level == 0 ? row.lower : row.upper;
-        const auto axis = AxisAt(dd, p, g.scale_x, g.mask_x);
-        const auto ty = tables.fy[level](df, e);
+        const auto axis = AxisAt(dd, p, scale[level], mask[level]);
+        const auto ty = t.fy[level](df, e);
         auto store = [&](int field, hn::Vec<decltype(df)> v) { hn::StoreU(v, df, fractions + std::size_t(field) * chunk); };
         store(level == 0 ? lower_fx : upper_fx, axis.fraction);
         store(level == 0 ? lower_gx : upper_gx, hn::Sub(one_f, axis.fraction));
@@ -140,8 +148,8 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& table
         store(level == 0 ? lower_gy : upper_gy, hn::Sub(one_f, ty));
         const auto column = hn::ShiftLeft<3>(axis.texel);
         const int row0 = level == 0 ? lower_row0 : upper_row0;
-        hn::StoreU(hn::Add(tables.rows[2 * level](d32, e), column), d32, offsets + std::size_t(row0) * chunk);
-        hn::StoreU(hn::Add(tables.rows[2 * level + 1](d32, e), column), d32, offsets + std::size_t(row0 + 1) * chunk);
+        hn::StoreU(hn::Add(t.rows[2 * level](d32, e), column), d32, offsets + std::size_t(row0) * chunk);
+        hn::StoreU(hn::Add(t.rows[2 * level + 1](d32, e), column), d32, offsets + std::size_t(row0 + 1) * chunk);
     };
     for (std::size_t i = 0; i < row.n; i += lanes) {
         const auto x = hn::Add(hn::Add(hn::LoadU(dd, row.x + i), a), b);
@@ -168,7 +176,7 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Tables& table
             const auto w = hn::DemoteTo(df, weights[k]);
             hn::StoreU(w, df, fractions + std::size_t(weight) * chunk);
             hn::StoreU(hn::Mul(w, w), df, fractions + std::size_t(weight_squared) * chunk);
-            const auto p = hn::Add(x, tables.x(dd, entry[k]));
+            const auto p = hn::Add(x, t.x(dd, entry[k]));
             const auto e = hn::BitCast(d32, hn::TruncateTo(du32, hn::BitCast(du, entry[k])));
             lookup(0, p, e, offsets, fractions);
             if (Upper) lookup(1, p, e, offsets, fractions);
