@@ -100,15 +100,18 @@ TilingRaster::Plan TilingRaster::plan(const Footprint2D& footprint_px, const Foo
     return plan;
 }
 
-const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspace& workspace) const
+inline const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspace& workspace) const
 {
     Workspace::Slot& slot = workspace.slots_[std::size_t((std::uint64_t(i) & workspace.mask_i_) |
                                                          ((std::uint64_t(j) & workspace.mask_j_) << workspace.shift_j_))];
-    if (slot.i != i || slot.j != j) {
-        const std::array<double, 2> t = tile_position(noise_.grid().vertex(i, j), 0, 0, noise_.width(), noise_.height());
-        slot = {i, j, t[0], t[1]};
-    }
+    if (slot.i != i || slot.j != j) fill(slot, i, j);
     return &slot.dx;
+}
+
+void TilingRaster::fill(Workspace::Slot& slot, std::int64_t i, std::int64_t j) const
+{
+    const std::array<double, 2> t = tile_position(noise_.grid().vertex(i, j), 0, 0, noise_.width(), noise_.height());
+    slot = {i, j, t[0], t[1]};
 }
 
 template <int Channels>
@@ -134,26 +137,30 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
     ws.fractions_.resize(runs * tiling_raster::fraction_fields * chunk);
     const TilingGrid& grid = noise_.grid();
     static const double two_over_sqrt3 = 2 / std::sqrt(3.0);
-    for (std::size_t l = 0; l < lanes; ++l) ws.x_[l] = x[std::min(l, count - 1)];  // padded with the last position
+    std::copy(x, x + count, ws.x_.begin());
+    std::fill(ws.x_.begin() + std::ptrdiff_t(count), ws.x_.end(), x[count - 1]);  // padded with the last position
+    tiling_raster::TapRow row{};  // what is the same for every tap, then each tap's
+    row.x = ws.x_.data(), row.n = lanes, row.inverse_edge_x = grid.inverse_edges()[0];
+    row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
     for (int j = 0, k = 0; j < taps.nb; ++j)
         for (int i = 0; i < taps.na; ++i, ++k) {
             // This tap of every position: x + offset on the line py (TilingGrid::triangle's row).
             const double a = taps.along_a[std::size_t(i)][0], b = taps.along_b[std::size_t(j)][0];
             const double py = y + taps.along_a[std::size_t(i)][1] + taps.along_b[std::size_t(j)][1];
-            tiling_raster::TapRow row{};
-            row.x = ws.x_.data(), row.n = lanes, row.a = a, row.b = b, row.y = py;
+            row.a = a, row.b = b, row.y = py;
             row.sy = (py * grid.inverse_edges()[1]) * two_over_sqrt3;
             const double cy = floor_exact(row.sy);
             row.fy = row.sy - cy;
-            row.inverse_edge_x = grid.inverse_edges()[0];
             // The vertex columns the positions' triangles use (x is monotone: the ends bound them).
             const double c_first = floor_exact((x[0] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_last = floor_exact((x[count - 1] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_min = std::min(c_first, c_last), c_max = std::max(c_first, c_last);
             const std::size_t columns = std::size_t(c_max - c_min) + 2, entries = tiling_raster::vertex_entries(columns);
             // The vertex tables: entry r · columns + c for vertex (c_min + c, cy + r); x then y.
-            ws.rows_.assign(2 * entries, 0.0);
+            ws.rows_.resize(2 * entries);
             double* rows = ws.rows_.data();
+            std::fill(rows + 2 * columns, rows + entries, 0.0);  // the padding: read, never looked up
+            std::fill(rows + entries + 2 * columns, rows + 2 * entries, 0.0);
             const std::int64_t vj = std::int64_t(cy), vi = std::int64_t(c_min);
             for (int r = 0; r < 2; ++r)
                 for (std::size_t c = 0; c < columns; ++c) {
@@ -166,7 +173,6 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
             row.i_min = c_min, row.columns = columns;
             row.translation_x = rows, row.translation_y = rows + entries;
             row.vertex_fy = ws.vertex_fy_.data(), row.vertex_rows = ws.vertex_rows_.data();
-            row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
             const tiling_raster::TileReads reads{ws.offsets_.data() + std::size_t(k) * 3 * tiling_raster::offset_fields * chunk,
                                                  ws.fractions_.data() + std::size_t(k) * 3 * tiling_raster::fraction_fields * chunk};
             tiling_raster::plan_tap_row(row, reads);

@@ -124,6 +124,8 @@ private:
     void estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const;
     /// Vertex (i, j)'s translation: the tile at that vertex reads the exemplar at p + translation.
     const double* translation(std::int64_t i, std::int64_t j, Workspace& workspace) const;
+    /// A slot's translation computed (translation()'s miss, kept out of its line).
+    void fill(Workspace::Slot& slot, std::int64_t i, std::int64_t j) const;
 
     const TilingNoise& noise_;
     const PackedMomentPyramid& pyramid_;
