@@ -77,7 +77,7 @@ TilingRaster::TilingRaster(const TilingNoise& noise, const PackedMomentPyramid& 
 namespace {
 tiling_raster::LevelGeometry geometry(const PackedMomentPyramid::Level& l)
 {
-    return {l.scale_x, l.scale_y, std::int32_t(l.mask_x), std::int32_t(l.mask_y), std::int32_t(l.row)};
+    return {l.scale_x, l.scale_y, double(l.mask_x + 1), double(l.mask_y + 1), std::int32_t(l.row)};
 }
 }  // namespace
 

@@ -40,7 +40,7 @@ struct RecordPairs<3> {
 /// A pyramid level's geometry for the address stage (PackedMomentPyramid::Level).
 struct LevelGeometry {
     double scale_x, scale_y;          ///< texels per level-0 pixel
-    std::int32_t mask_x, mask_y;      ///< width − 1, height − 1 (sides are powers of two)
+    double width, height;             ///< texels (powers of two)
     std::int32_t row;                 ///< records per row (width + 1)
 };
 
@@ -60,8 +60,8 @@ constexpr std::size_t vertex_entries(std::size_t columns) { return (2 * columns 
 /// records read are at (iy · row + ix) · 8 and ((iy + 1 mod height) · row + ix) · 8 floats.
 /// The y side of a lookup (y + T_y, fy, iy, its row's offsets) depends on the vertex alone, y
 /// being the row's: it is computed once per vertex entry, into the scratch tables, and read
-/// by the lanes as the translations are; ix is int64(x0) & (width − 1), the same integer for
-/// |x0| < 2^63.
+/// by the lanes as the translations are (iy + 1 mod height as (iy + 1) & (height − 1)); the
+/// offsets as iy · row · 8 + ix · 8 in int32, the same integers.
 struct TapRow {
     const double* x;  ///< n pixel positions (n a multiple of max_lanes); the tap's are (x + a) + b
     std::size_t n;
