@@ -77,8 +77,7 @@ TilingRaster::TilingRaster(const TilingNoise& noise, const PackedMomentPyramid& 
 namespace {
 tiling_raster::LevelGeometry geometry(const PackedMomentPyramid::Level& l)
 {
-    const double width = double(l.mask_x + 1), height = double(l.mask_y + 1);
-    return {l.scale_x, l.scale_y, width, height, 1 / width, 1 / height, double(l.row)};
+    return {l.scale_x, l.scale_y, double(l.mask_x + 1), double(l.mask_y + 1), std::int32_t(l.row)};
 }
 }  // namespace
 
@@ -101,15 +100,18 @@ TilingRaster::Plan TilingRaster::plan(const Footprint2D& footprint_px, const Foo
     return plan;
 }
 
-const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspace& workspace) const
+inline const double* TilingRaster::translation(std::int64_t i, std::int64_t j, Workspace& workspace) const
 {
     Workspace::Slot& slot = workspace.slots_[std::size_t((std::uint64_t(i) & workspace.mask_i_) |
                                                          ((std::uint64_t(j) & workspace.mask_j_) << workspace.shift_j_))];
-    if (slot.i != i || slot.j != j) {
-        const std::array<double, 2> t = tile_position(noise_.grid().vertex(i, j), 0, 0, noise_.width(), noise_.height());
-        slot = {i, j, t[0], t[1]};
-    }
+    if (slot.i != i || slot.j != j) fill(slot, i, j);
     return &slot.dx;
+}
+
+void TilingRaster::fill(Workspace::Slot& slot, std::int64_t i, std::int64_t j) const
+{
+    const std::array<double, 2> t = tile_position(noise_.grid().vertex(i, j), 0, 0, noise_.width(), noise_.height());
+    slot = {i, j, t[0], t[1]};
 }
 
 template <int Channels>
@@ -127,58 +129,52 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
         return;
     }
     const std::size_t lanes = (count + tiling_raster::max_lanes - 1) / tiling_raster::max_lanes * tiling_raster::max_lanes;
-    // Address-stage buffers, per tap and tile a run of `chunk` per field (the first `lanes` used):
-    // offsets (row iy, row iy + 1, and the upper level's), fractions (x, y, upper x, upper y), the
-    // weight, the fractions' complements and the weight squared (tiling_raster::TapSums).
+    // Address-stage buffers (tiling_raster::OffsetField, FractionField): per tap and tile a
+    // run of `chunk` per field, the first `lanes` used.
     const std::size_t runs = std::size_t(n_taps) * 3;
     ws.x_.resize(lanes);
-    ws.offsets_.resize(runs * 4 * chunk);
-    ws.fractions_.resize(runs * 10 * chunk);
-    auto offsets = [&](std::size_t run, int field) { return ws.offsets_.data() + (run * 4 + std::size_t(field)) * chunk; };
-    auto fractions = [&](std::size_t run, int field) { return ws.fractions_.data() + (run * 10 + std::size_t(field)) * chunk; };
+    ws.offsets_.resize(runs * tiling_raster::offset_fields * chunk);
+    ws.fractions_.resize(runs * tiling_raster::fraction_fields * chunk);
     const TilingGrid& grid = noise_.grid();
     static const double two_over_sqrt3 = 2 / std::sqrt(3.0);
-    for (std::size_t l = 0; l < lanes; ++l) ws.x_[l] = x[std::min(l, count - 1)];  // padded with the last position
+    std::copy(x, x + count, ws.x_.begin());
+    std::fill(ws.x_.begin() + std::ptrdiff_t(count), ws.x_.end(), x[count - 1]);  // padded with the last position
+    tiling_raster::TapRow row{};  // what is the same for every tap, then each tap's
+    row.x = ws.x_.data(), row.n = lanes, row.inverse_edge_x = grid.inverse_edges()[0];
+    row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
     for (int j = 0, k = 0; j < taps.nb; ++j)
         for (int i = 0; i < taps.na; ++i, ++k) {
             // This tap of every position: x + offset on the line py (TilingGrid::triangle's row).
             const double a = taps.along_a[std::size_t(i)][0], b = taps.along_b[std::size_t(j)][0];
             const double py = y + taps.along_a[std::size_t(i)][1] + taps.along_b[std::size_t(j)][1];
-            tiling_raster::TapRow row{};
-            row.x = ws.x_.data(), row.n = lanes, row.a = a, row.b = b, row.y = py;
+            row.a = a, row.b = b, row.y = py;
             row.sy = (py * grid.inverse_edges()[1]) * two_over_sqrt3;
             const double cy = floor_exact(row.sy);
             row.fy = row.sy - cy;
-            row.inverse_edge_x = grid.inverse_edges()[0];
             // The vertex columns the positions' triangles use (x is monotone: the ends bound them).
             const double c_first = floor_exact((x[0] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_last = floor_exact((x[count - 1] + a + b) * row.inverse_edge_x - 0.5 * row.sy);
             const double c_min = std::min(c_first, c_last), c_max = std::max(c_first, c_last);
-            const std::size_t columns = std::size_t(c_max - c_min) + 2;
-            ws.rows_.resize(4 * columns);
+            const std::size_t columns = std::size_t(c_max - c_min) + 2, entries = tiling_raster::vertex_entries(columns);
+            // The vertex tables: entry r · columns + c for vertex (c_min + c, cy + r); x then y.
+            ws.rows_.resize(2 * entries);
             double* rows = ws.rows_.data();
+            std::fill(rows + 2 * columns, rows + entries, 0.0);  // the padding: read, never looked up
+            std::fill(rows + entries + 2 * columns, rows + 2 * entries, 0.0);
             const std::int64_t vj = std::int64_t(cy), vi = std::int64_t(c_min);
-            for (std::size_t c = 0; c < columns; ++c)
-                for (int r = 0; r < 2; ++r) {
+            for (int r = 0; r < 2; ++r)
+                for (std::size_t c = 0; c < columns; ++c) {
                     const double* t = translation(vi + std::int64_t(c), vj + r, ws);
-                    rows[std::size_t(2 * r) * columns + c] = t[0];
-                    rows[std::size_t(2 * r + 1) * columns + c] = t[1];
+                    rows[std::size_t(r) * columns + c] = t[0];
+                    rows[entries + std::size_t(r) * columns + c] = t[1];
                 }
+            ws.vertex_fy_.resize(2 * entries);
+            ws.vertex_rows_.resize(4 * entries);
             row.i_min = c_min, row.columns = columns;
-            row.row0_x = rows, row.row0_y = rows + columns, row.row1_x = rows + 2 * columns, row.row1_y = rows + 3 * columns;
-            row.lower = plan.lower_geometry, row.upper = plan.upper_geometry, row.has_upper = plan.upper != nullptr;
-            tiling_raster::TileReads reads{};
-            for (int t = 0; t < 3; ++t) {
-                const std::size_t run = std::size_t(k) * 3 + std::size_t(t);
-                reads.offset0[t] = offsets(run, 0), reads.offset1[t] = offsets(run, 1);
-                reads.upper_offset0[t] = offsets(run, 2), reads.upper_offset1[t] = offsets(run, 3);
-                reads.fx[t] = fractions(run, 0), reads.fy[t] = fractions(run, 1);
-                reads.upper_fx[t] = fractions(run, 2), reads.upper_fy[t] = fractions(run, 3);
-                reads.weight[t] = fractions(run, 4);
-                reads.gx[t] = fractions(run, 5), reads.gy[t] = fractions(run, 6);
-                reads.upper_gx[t] = fractions(run, 7), reads.upper_gy[t] = fractions(run, 8);
-                reads.weight_squared[t] = fractions(run, 9);
-            }
+            row.translation_x = rows, row.translation_y = rows + entries;
+            row.vertex_fy = ws.vertex_fy_.data(), row.vertex_rows = ws.vertex_rows_.data();
+            const tiling_raster::TileReads reads{ws.offsets_.data() + std::size_t(k) * 3 * tiling_raster::offset_fields * chunk,
+                                                 ws.fractions_.data() + std::size_t(k) * 3 * tiling_raster::fraction_fields * chunk};
             tiling_raster::plan_tap_row(row, reads);
         }
     // The lookups and the mixture, position by position.

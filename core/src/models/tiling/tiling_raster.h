@@ -11,9 +11,10 @@
 //     bilinear lookup's two texels along x are always adjacent — two reads of 16 floats;
 //   - positions go by rows: a raster row's taps of one index lie on one line, which fixes the
 //     triangle row and the two vertex rows whose tile translations (the whole-pixel shift and
-//     the period shift as one vector, drawn once and cached per thread) the line reads; the
-//     triangles, weights and lookup addresses are computed across the row's pixels and the
-//     lookups made per pixel, both by Highway kernels (tiling_raster_kernels.h);
+//     the period shift as one vector, drawn once and cached per thread) the line reads; the y
+//     side of the lookups is computed once per vertex of those rows, the triangles, weights and
+//     the rest of the lookup addresses across the row's pixels, and the lookups made per pixel,
+//     all by Highway kernels (tiling_raster_kernels.h);
 //   - the level choice, the level's geometry and the mixture's ratios as floats are resolved
 //     once per footprint (Plan).
 // Accuracy against the double estimator (tests/raster_paths_test.cpp): ≤ 1.9e-4 σ of each RGB
@@ -104,6 +105,8 @@ public:
         std::uint64_t mask_i_, mask_j_;
         int shift_j_;
         std::vector<double> x_, rows_;
+        std::vector<float> vertex_fy_;
+        std::vector<std::int32_t> vertex_rows_;
         std::vector<std::int32_t> offsets_;
         std::vector<float> fractions_;
     };
@@ -122,6 +125,8 @@ private:
     void estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& workspace, float* out) const;
     /// Vertex (i, j)'s translation: the tile at that vertex reads the exemplar at p + translation.
     const double* translation(std::int64_t i, std::int64_t j, Workspace& workspace) const;
+    /// A slot's translation computed (translation()'s miss, kept out of its line).
+    void fill(Workspace::Slot& slot, std::int64_t i, std::int64_t j) const;
 
     const TilingNoise& noise_;
     const PackedMomentPyramid& pyramid_;

@@ -19,39 +19,161 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::tiling_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// PlanTapRow's loop, the row tables' entries read by `read(table, column)` (table 0–3: row0_x,
-/// row0_y, row1_x, row1_y).
-template <class Read>
-void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
+/// Small whole-number doubles (|v| < 2^31) as int32 and int64: DemoteTo (and PromoteTo), on
+/// AVX-512 one conversion each, without Highway's clamping (which changes no such lane).
+template <class DD>
+HWY_INLINE hn::Vec<hn::Rebind<std::int32_t, DD>> SmallWholeToInt32(DD, hn::Vec<DD> v)
+{
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+    if constexpr (hn::MaxLanes(DD()) == 8) return hn::Vec<hn::Rebind<std::int32_t, DD>>{_mm512_cvttpd_epi32(v.raw)};
+#endif
+    return hn::DemoteTo(hn::Rebind<std::int32_t, DD>(), v);
+}
+template <class DD>
+HWY_INLINE hn::Vec<hn::RebindToSigned<DD>> SmallWholeToInt64(DD dd, hn::Vec<DD> v)
+{
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+    if constexpr (hn::MaxLanes(DD()) == 8) return hn::Vec<hn::RebindToSigned<DD>>{_mm512_cvttpd_epi64(v.raw)};
+#endif
+    return hn::PromoteTo(hn::RebindToSigned<DD>(), SmallWholeToInt32(dd, v));
+}
+
+/// The size of a level's side (a power of two) as doubles and the mask size − 1.
+template <class DD>
+struct Side {
+    hn::Vec<DD> size, inverse;
+    hn::Vec<hn::Rebind<std::int32_t, DD>> mask;
+    Side(DD dd, double side)
+        : size(hn::Set(dd, side)), inverse(hn::Set(dd, 1 / side)), mask(hn::Set(hn::Rebind<std::int32_t, DD>(), std::int32_t(side) - 1))
+    {
+    }
+};
+
+/// One axis of a bilinear lookup at p (TapRow): the fraction float(l − l0), l = p · scale − ½,
+/// l0 = floor(l), and the texel l0 mod size as int32: l0 − size · floor(l0 · (1 / size)) (exact
+/// for any l0, in [0, size)); on AVX-512 int64(l0) & (size − 1), the same for |l0| < 2^63, in
+/// three instructions instead of five (elsewhere the int64 conversion is emulated).
+template <class DD>
+struct Axis {
+    hn::Vec<hn::Rebind<float, DD>> fraction;
+    hn::Vec<hn::Rebind<std::int32_t, DD>> texel;
+};
+template <class DD>
+HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, hn::Vec<DD> scale, const Side<DD>& side)
+{
+    const auto l = hn::Sub(hn::Mul(p, scale), hn::Set(dd, 0.5));
+    const auto l0 = hn::Floor(l);
+    const auto fraction = hn::DemoteTo(hn::Rebind<float, DD>(), hn::Sub(l, l0));
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+    if constexpr (hn::MaxLanes(DD()) == 8) {
+        const hn::Vec<hn::RebindToUnsigned<DD>> whole{_mm512_cvttpd_epi64(l0.raw)};
+        const hn::Rebind<std::int32_t, DD> d32;
+        return {fraction, hn::And(hn::BitCast(d32, hn::TruncateTo(hn::Rebind<std::uint32_t, DD>(), whole)), side.mask)};
+    }
+#endif
+    return {fraction, SmallWholeToInt32(dd, hn::Sub(l0, hn::Mul(side.size, hn::Floor(hn::Mul(l0, side.inverse)))))};
+}
+
+/// The y side of every vertex entry's lookups (TapRow): fy at vertex_fy + level · entries, the
+/// offsets of rows iy and iy + 1 at vertex_rows + (2 · level + r) · entries.
+void VertexRows(const TapRow& row)
+{
+    const hn::ScalableTag<double> dd;
+    const hn::Rebind<float, decltype(dd)> df;
+    const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const std::size_t lanes = hn::Lanes(dd), entries = vertex_entries(row.columns);
+    const auto y = hn::Set(dd, row.y);
+    const auto one = hn::Set(d32, 1);
+    for (int level = 0; level < (row.has_upper ? 2 : 1); ++level) {
+        const LevelGeometry& g = level == 0 ? row.lower : row.upper;
+        const Side<hn::ScalableTag<double>> side(dd, g.height);
+        const auto records = hn::Set(d32, 8 * g.row);
+        const auto scale = hn::Set(dd, g.scale_y);
+        for (std::size_t e = 0; e < entries; e += lanes) {
+            const auto axis = AxisAt(dd, hn::Add(y, hn::LoadU(dd, row.translation_y + e)), scale, side);
+            hn::StoreU(axis.fraction, df, row.vertex_fy + std::size_t(level) * entries + e);
+            hn::StoreU(hn::Mul(axis.texel, records), d32, row.vertex_rows + std::size_t(2 * level) * entries + e);
+            hn::StoreU(hn::Mul(hn::And(hn::Add(axis.texel, one), side.mask), records), d32,
+                       row.vertex_rows + std::size_t(2 * level + 1) * entries + e);
+        }
+    }
+}
+
+/// A vertex table read by gathers (Table's interface, for rows whose tables are too long to
+/// hold in registers).
+template <class D>
+class Gathered {
+public:
+    Gathered(D, const hn::TFromD<D>* values, std::size_t, std::size_t) : values_(values) {}
+    static bool fits(D, std::size_t) { return true; }
+    hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const { return hn::GatherIndex(d, values_, index); }
+
+private:
+    const hn::TFromD<D>* values_;
+};
+
+/// A tap row's vertex tables held as Table (PairTable, SmallTable, Gathered): the translations'
+/// x, and per level fy and the two rows' offsets (VertexRows; the upper level's empty without one).
+template <template <class> class Table>
+struct VertexTables {
+    using DD = hn::ScalableTag<double>;
+    using DF = hn::Rebind<float, DD>;
+    using D32 = hn::Rebind<std::int32_t, DD>;
+    static bool fits(std::size_t columns) { return Table<DD>::fits(DD(), 2 * columns); }
+    explicit VertexTables(const TapRow& row)
+        : entries(vertex_entries(row.columns)), used(2 * row.columns), upper(row.has_upper ? used : 0),
+          upper_entries(row.has_upper ? entries : 0), x(DD(), row.translation_x, used, entries),
+          fy{{DF(), row.vertex_fy, used, entries}, {DF(), row.vertex_fy + entries, upper, upper_entries}},
+          rows{{D32(), row.vertex_rows, used, entries},
+               {D32(), row.vertex_rows + entries, used, entries},
+               {D32(), row.vertex_rows + 2 * entries, upper, upper_entries},
+               {D32(), row.vertex_rows + 3 * entries, upper, upper_entries}}
+    {
+    }
+    std::size_t entries, used;               ///< per table: padded (vertex_entries), in use (2 · columns)
+    std::size_t upper, upper_entries;        ///< the upper level's: 0 without one
+    Table<DD> x;
+    Table<DF> fy[2];
+    Table<D32> rows[4];
+};
+
+/// PlanTapRow's loop for one level or two, the vertex tables read through `tables` (VertexTables).
+template <bool Upper, class Tables>
+void PlanTapRowWith(const TapRow& row, const TileReads& reads, const Tables& tables)
 {
     const hn::ScalableTag<double> dd;
     const hn::RebindToSigned<decltype(dd)> di;
+    const hn::RebindToUnsigned<decltype(dd)> du;
     const hn::Rebind<float, decltype(dd)> df;
     const hn::Rebind<std::int32_t, decltype(dd)> d32;
+    const hn::Rebind<std::uint32_t, decltype(dd)> du32;
     const std::size_t lanes = hn::Lanes(dd);
-    const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5), zero = hn::Zero(dd);
-    const auto fy = hn::Set(dd, row.fy), y = hn::Set(dd, row.y), i_min = hn::Set(dd, row.i_min);
+    const auto one = hn::Set(dd, 1.0), half = hn::Set(dd, 0.5);
+    const auto fy = hn::Set(dd, row.fy), i_min = hn::Set(dd, row.i_min);
     const auto shift = hn::Mul(half, hn::Set(dd, row.sy)), inverse_edge = hn::Set(dd, row.inverse_edge_x);
-    const auto eight = hn::Set(dd, 8.0), a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
+    const auto a = hn::Set(dd, row.a), b = hn::Set(dd, row.b);
     const auto one_f = hn::Set(df, 1.0f);
-    // One level's lookup of tile k at p, q: the two record offsets, the fractions and their complements.
-    auto lookup = [&](const LevelGeometry& g, hn::Vec<decltype(dd)> p, hn::Vec<decltype(dd)> q, std::int32_t* o0, std::int32_t* o1,
-                      float* fx, float* fyo, float* gx, float* gy, std::size_t i) {
-        const auto lx = hn::Sub(hn::Mul(p, hn::Set(dd, g.scale_x)), half), ly = hn::Sub(hn::Mul(q, hn::Set(dd, g.scale_y)), half);
-        const auto x0 = hn::Floor(lx), y0 = hn::Floor(ly);
-        const auto tx = hn::DemoteTo(df, hn::Sub(lx, x0)), ty = hn::DemoteTo(df, hn::Sub(ly, y0));
-        hn::StoreU(tx, df, fx + i);
-        hn::StoreU(ty, df, fyo + i);
-        hn::StoreU(hn::Sub(one_f, tx), df, gx + i);
-        hn::StoreU(hn::Sub(one_f, ty), df, gy + i);
-        const auto width = hn::Set(dd, g.width), height = hn::Set(dd, g.height);
-        const auto ix = hn::Sub(x0, hn::Mul(width, hn::Floor(hn::Mul(x0, hn::Set(dd, g.inverse_width)))));
-        const auto iy = hn::Sub(y0, hn::Mul(height, hn::Floor(hn::Mul(y0, hn::Set(dd, g.inverse_height)))));
-        const auto next = hn::Add(iy, one);
-        const auto jy = hn::IfThenElse(hn::Ge(next, height), zero, next);
-        const auto records = hn::Set(dd, g.row);
-        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(iy, records), ix), eight)), d32, o0 + i);
-        hn::StoreU(hn::DemoteTo(d32, hn::Mul(hn::Add(hn::Mul(jy, records), ix), eight)), d32, o1 + i);
+    const auto one_64 = hn::Set(di, 1), columns = hn::Set(di, std::int64_t(row.columns));
+    // The tables and the levels' constants as locals, so that they stay in registers (the
+    // compiler cannot tell the stores from them otherwise).
+    const Tables t = tables;
+    const TileReads out = reads;
+    const hn::Vec<decltype(dd)> scale[2] = {hn::Set(dd, row.lower.scale_x), hn::Set(dd, row.upper.scale_x)};
+    const Side<hn::ScalableTag<double>> width[2] = {{dd, row.lower.width}, {dd, row.upper.width}};
+    // One level's lookup at p (vertex entry e) into tile k's fields: the two record offsets,
+    // the fractions and their complements.
+    auto lookup = [&](int level, hn::Vec<decltype(dd)> p, hn::Vec<decltype(d32)> e, std::int32_t* offsets, float* fractions) {
+        const auto axis = AxisAt(dd, p, scale[level], width[level]);
+        const auto ty = t.fy[level](df, e);
+        auto store = [&](int field, hn::Vec<decltype(df)> v) { hn::StoreU(v, df, fractions + std::size_t(field) * chunk); };
+        store(level == 0 ? lower_fx : upper_fx, axis.fraction);
+        store(level == 0 ? lower_gx : upper_gx, hn::Sub(one_f, axis.fraction));
+        store(level == 0 ? lower_fy : upper_fy, ty);
+        store(level == 0 ? lower_gy : upper_gy, hn::Sub(one_f, ty));
+        const auto column = hn::ShiftLeft<3>(axis.texel);
+        const int row0 = level == 0 ? lower_row0 : upper_row0;
+        hn::StoreU(hn::Add(t.rows[2 * level](d32, e), column), d32, offsets + std::size_t(row0) * chunk);
+        hn::StoreU(hn::Add(t.rows[2 * level + 1](d32, e), column), d32, offsets + std::size_t(row0 + 1) * chunk);
     };
     for (std::size_t i = 0; i < row.n; i += lanes) {
         const auto x = hn::Add(hn::Add(hn::LoadU(dd, row.x + i), a), b);
@@ -65,40 +187,50 @@ void PlanTapRowWith(const TapRow& row, const TileReads& out, const Read& read)
         const auto inverse_norm =
             hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(b0, b0), hn::Mul(b1, b1)), hn::Mul(b2, b2))));
         const hn::Vec<decltype(dd)> weights[3] = {hn::Mul(b0, inverse_norm), hn::Mul(b1, inverse_norm), hn::Mul(b2, inverse_norm)};
-        // Translation columns c = cx − i_min and c + 1 in both vertex rows.
-        const auto c = hn::ConvertTo(di, hn::Sub(cx, i_min));
-        const auto c1 = hn::Add(c, hn::Set(di, 1));
-        const auto t0x = hn::IfThenElse(upper, read(2, c1), read(0, c));
-        const auto t0y = hn::IfThenElse(upper, read(3, c1), read(1, c));
-        const hn::Vec<decltype(dd)> tx[3] = {t0x, read(0, c1), read(2, c)};
-        const hn::Vec<decltype(dd)> ty[3] = {t0y, read(1, c1), read(3, c)};
+        // The tiles' vertex entries: column c = cx − i_min (exact: a small integer) and c + 1,
+        // row j or j + 1; as int64 for the translations, as int32 for the other tables.
+        const auto c = SmallWholeToInt64(dd, hn::Sub(cx, i_min));
+        const auto below = hn::Add(c, columns);
+        const hn::Vec<decltype(di)> entry[3] = {hn::IfThenElse(hn::RebindMask(di, upper), hn::Add(below, one_64), c), hn::Add(c, one_64),
+                                                below};
+        HWY_UNROLL(3)
         for (int k = 0; k < 3; ++k) {
+            std::int32_t* offsets = out.offsets + std::size_t(k * offset_fields) * chunk + i;
+            float* fractions = out.fractions + std::size_t(k * fraction_fields) * chunk + i;
             const auto w = hn::DemoteTo(df, weights[k]);
-            hn::StoreU(w, df, out.weight[k] + i);
-            hn::StoreU(hn::Mul(w, w), df, out.weight_squared[k] + i);
-            const auto p = hn::Add(x, tx[k]), q = hn::Add(y, ty[k]);
-            lookup(row.lower, p, q, out.offset0[k], out.offset1[k], out.fx[k], out.fy[k], out.gx[k], out.gy[k], i);
-            if (row.has_upper)
-                lookup(row.upper, p, q, out.upper_offset0[k], out.upper_offset1[k], out.upper_fx[k], out.upper_fy[k], out.upper_gx[k],
-                       out.upper_gy[k], i);
+            hn::StoreU(w, df, fractions + std::size_t(weight) * chunk);
+            hn::StoreU(hn::Mul(w, w), df, fractions + std::size_t(weight_squared) * chunk);
+            const auto p = hn::Add(x, t.x(dd, entry[k]));
+            const auto e = hn::BitCast(d32, hn::TruncateTo(du32, hn::BitCast(du, entry[k])));
+            lookup(0, p, e, offsets, fractions);
+            if (Upper) lookup(1, p, e, offsets, fractions);
         }
     }
+}
+
+/// PlanTapRowWith for the row's level count.
+template <class Tables>
+void PlanTapRowOf(const TapRow& row, const TileReads& out, const Tables& tables)
+{
+    if (row.has_upper)
+        PlanTapRowWith<true>(row, out, tables);
+    else
+        PlanTapRowWith<false>(row, out, tables);
 }
 
 void PlanTapRow(const TapRow& row, const TileReads& out)
 {
     // A row's tables span a few vertex columns (a 64-pixel chunk at 4 exemplar pixels per pixel:
-    // about 5): in registers, read by permutations, where they fit; else gathered.
-    const hn::ScalableTag<double> dd;
-    using Table = small_table::HWY_NAMESPACE::SmallTable<decltype(dd)>;
-    const double* tables[4] = {row.row0_x, row.row0_y, row.row1_x, row.row1_y};
-    if (Table::fits(dd, row.columns)) {
-        const Table small[4] = {{dd, tables[0], row.columns}, {dd, tables[1], row.columns}, {dd, tables[2], row.columns},
-                                {dd, tables[3], row.columns}};
-        PlanTapRowWith(row, out, [&](int table, auto column) { return small[table](dd, column); });
-    } else {
-        PlanTapRowWith(row, out, [&](int table, auto column) { return hn::GatherIndex(dd, tables[table], column); });
-    }
+    // about 5, 10 entries): in registers, read by permutations, where they fit; else gathered.
+    using small_table::HWY_NAMESPACE::PairTable;
+    using small_table::HWY_NAMESPACE::SmallTable;
+    VertexRows(row);
+    if (VertexTables<PairTable>::fits(row.columns))
+        PlanTapRowOf(row, out, VertexTables<PairTable>(row));
+    else if (VertexTables<SmallTable>::fits(row.columns))
+        PlanTapRowOf(row, out, VertexTables<SmallTable>(row));
+    else
+        PlanTapRowOf(row, out, VertexTables<Gathered>(row));
 }
 
 /// SetTableIndices' result for tag D (Highway 1.0 names no such type).
@@ -205,8 +337,8 @@ std::size_t AccumulateVectors(const TapSums& s, std::size_t first, std::size_t c
             auto sum = hn::Zero(d);
             for (int tile = 0; tile < 3; ++tile) {
                 const std::size_t run = std::size_t(k) * 3 + std::size_t(tile);
-                const std::int32_t* offsets = s.offsets + run * 4 * chunk + l;
-                const float* fractions = s.fractions + run * 10 * chunk + l;
+                const std::int32_t* offsets = s.offsets + run * offset_fields * chunk + l;
+                const float* fractions = s.fractions + run * fraction_fields * chunk + l;
                 auto field = [&](int f) { return layout.factor(fractions + std::size_t(f) * chunk); };
                 auto bilinear = [&](const float* data, int row, int fraction) {
                     hn::Vec<typename L::D> row0[2], row1[2];
@@ -263,8 +395,8 @@ void AccumulateTapsFor(const TapSums& s, std::size_t count, float* out)
     const hn::CappedTag<float, record> df;
     const int step = int(hn::Lanes(df)), parts = record / step;
     const int taps = Taps > 0 ? Taps : s.taps;
-    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * 4 + std::size_t(field)) * chunk; };
-    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * 10 + std::size_t(field)) * chunk; };
+    auto at_offsets = [&](std::size_t run, int field) { return s.offsets + (run * offset_fields + std::size_t(field)) * chunk; };
+    auto at_fractions = [&](std::size_t run, int field) { return s.fractions + (run * fraction_fields + std::size_t(field)) * chunk; };
     const auto level_t = hn::Set(df, s.t);
     hn::Mask<decltype(df)> part_means[record];  // the mean lanes of each part of a record
     for (int h = 0; h < parts; ++h) part_means[h] = hn::FirstN(df, std::size_t(std::max(0, Channels - h * step)));

@@ -41,9 +41,12 @@ struct RecordPairs<3> {
 struct LevelGeometry {
     double scale_x, scale_y;          ///< texels per level-0 pixel
     double width, height;             ///< texels (powers of two)
-    double inverse_width, inverse_height;
-    double row;                       ///< records per row (width + 1)
+    std::int32_t row;                 ///< records per row (width + 1)
 };
+
+/// Entries of a tap row's vertex tables for `columns` vertex columns: both vertex rows, padded
+/// to whole vectors.
+constexpr std::size_t vertex_entries(std::size_t columns) { return (2 * columns + max_lanes - 1) / max_lanes * max_lanes; }
 
 /// One tap row. Triangle (TilingGrid::blend's geometry with reciprocals): sy = (y / edge_y) ·
 /// 2/√3 and fy = sy − floor(sy) are the row's; per tap position x sx = x · (1/edge_x) − ½ sy,
@@ -51,52 +54,48 @@ struct LevelGeometry {
 /// (cx + 1, j), (cx, j + 1) with B = (1 − fx − fy, fx, fy), else (cx + 1, j + 1), (cx + 1, j),
 /// (cx, j + 1) with B = (fx + fy − 1, 1 − fy, 1 − fx); w = B · (1 / √(B·B)).
 /// Tile k reads the exemplar at (x + T_x, y + T_y), T the vertex's translation, read from the
-/// row tables: row0 for vertex row j, row1 for j + 1, column c at vertex column i_min + c.
+/// vertex tables: entry c for vertex (i_min + c, j), entry columns + c for (i_min + c, j + 1).
 /// Lookup (MomentPyramid::sample_level_linear's centres and wrap): lx = p · scale_x − ½,
 /// x0 = floor(lx), fx = float(lx − x0), ix = x0 − width · floor(x0 / width), likewise y; the
 /// records read are at (iy · row + ix) · 8 and ((iy + 1 mod height) · row + ix) · 8 floats.
+/// The y side of a lookup (y + T_y, fy, iy, its row's offsets) depends on the vertex alone, y
+/// being the row's: it is computed once per vertex entry, into the scratch tables, and read
+/// by the lanes as the translations are (iy + 1 mod height as (iy + 1) & (height − 1)); the
+/// offsets as iy · row · 8 + ix · 8 in int32, the same integers.
 struct TapRow {
     const double* x;  ///< n pixel positions (n a multiple of max_lanes); the tap's are (x + a) + b
     std::size_t n;
     double a, b;      ///< the tap's offset along the footprint's axes (x components)
     double y, sy, fy, inverse_edge_x;
     double i_min;
-    std::size_t columns;  ///< entries of each row table
-    const double* row0_x;
-    const double* row0_y;
-    const double* row1_x;
-    const double* row1_y;
+    std::size_t columns;            ///< vertex columns: 2 · columns vertex entries
+    const double* translation_x;    ///< vertex_entries(columns) entries (the padding any value)
+    const double* translation_y;
     LevelGeometry lower, upper;
     bool has_upper;
+    float* vertex_fy;               ///< scratch: 2 · vertex_entries(columns) floats
+    std::int32_t* vertex_rows;      ///< scratch: 4 · vertex_entries(columns) offsets
 };
 
-/// Where tile k (0–2) of position i reads: at lower (and upper) level, the record offsets of
-/// the texel pair of rows iy and iy + 1, the fractions f and their complements 1 − f (in
-/// float, as the lookup uses them); w its blend weight (float) and w · w.
+/// The address stage's buffers, as TilingRaster::estimate_chunk lays them out: run r = 3 · tap +
+/// tile holds `chunk` values per field, offsets at offsets + (offset_fields · r + f) · chunk,
+/// fractions at fractions + (fraction_fields · r + f) · chunk. Per tile: at the lower (and upper)
+/// level, the record offsets of the texel pair of rows iy and iy + 1, the fractions and their
+/// complements 1 − f (in float, as the lookup uses them); the blend weight w (float) and w · w.
+enum OffsetField { lower_row0, lower_row1, upper_row0, upper_row1, offset_fields };
+enum FractionField { lower_fx, lower_fy, upper_fx, upper_fy, weight, lower_gx, lower_gy, upper_gx, upper_gy, weight_squared, fraction_fields };
+
+/// Where the three tiles of a tap row read: the tap's runs (3 · tap + tile, tile 0–2), from
+/// position 0; the upper level's fields are written when has_upper.
 struct TileReads {
-    std::int32_t* offset0[3];
-    std::int32_t* offset1[3];
-    float* fx[3];
-    float* fy[3];
-    std::int32_t* upper_offset0[3];  ///< used when has_upper
-    std::int32_t* upper_offset1[3];
-    float* upper_fx[3];
-    float* upper_fy[3];
-    float* weight[3];
-    float* gx[3];  ///< 1 − fx, and so on
-    float* gy[3];
-    float* upper_gx[3];
-    float* upper_gy[3];
-    float* weight_squared[3];
+    std::int32_t* offsets;
+    float* fractions;
 };
 
 void plan_tap_row(const TapRow& row, const TileReads& out);
 
-/// The lookups and the mixture of `count` positions from plan_tap_row's reads, stored as
-/// TilingRaster::estimate_chunk lays them out: run r = 3 · tap + tile holds `chunk` values per
-/// field, offsets at offsets + (4 r + f) · chunk (f: lower row iy, lower row iy + 1, upper, upper),
-/// fractions at fractions + (10 r + f) · chunk (f: lower x, lower y, upper x, upper y, weight,
-/// then the four fractions' complements and the weight squared).
+/// The lookups and the mixture of `count` positions from plan_tap_row's reads (OffsetField,
+/// FractionField).
 /// Per position and tap, the three tiles' bilinear records (8 floats: lane-wise, in
 /// vectors of up to 8), blended towards the upper level by t, are summed as w · (means + w ·
 /// moments) · record (`means` 1 on the mean lanes, 0 on the moment lanes); the taps then
