@@ -99,12 +99,34 @@ lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
                                                           : lrp_raster::Normalisation::none;
 }
 
+/// A lattice row's terms from the region's cache, in LrpStratumNoise::draw_row's layout (term t
+/// of point w at [t · stride + w] of each plane, zero past a point's own and from `count` on).
+/// Returns the most terms a point has.
+int transpose_row(const LrpTermCache& terms, std::int64_t i_begin, std::size_t count, std::int64_t j,
+                  float* const planes[8], std::size_t stride)
+{
+    int live = 0;
+    for (std::size_t w = 0; w < count; ++w) live = std::max(live, terms.at(i_begin + std::int64_t(w), j).live);
+    for (std::size_t w = 0; w < count; ++w) {
+        const LrpTermView view = terms.at(i_begin + std::int64_t(w), j);
+        for (std::size_t t = 0; t < std::size_t(live); ++t) {
+            const bool held = t < std::size_t(view.live);
+            for (std::size_t p = 0; p < 8; ++p)
+                planes[p][t * stride + w] = held ? view.data[p * std::size_t(view.stride) + t] : 0.0f;
+        }
+    }
+    for (std::size_t p = 0; p < 8; ++p)
+        for (std::size_t t = 0; t < std::size_t(live); ++t) std::fill(planes[p] + t * stride + count, planes[p] + (t + 1) * stride, 0.0f);
+    return live;
+}
+
 /// The raster for windows a few pixels wide (lrp_raster.h): pixels of a row in the lanes, each
-/// lane with its own 3×3 windows. `view_of(i, j)` gives lattice point (i, j)'s terms (valid until
-/// the next call), for i in [i_begin, i_end) — every pixel's 3×3 windows (the caller checks).
-template <class ViewOf>
+/// lane with its own 3×3 windows. `fill_row(j, planes, stride)` puts lattice row j's terms into
+/// the eight planes (transpose_row's layout, for the lattice columns [i_begin, i_end) — every
+/// pixel's 3×3 windows, the caller checks) and returns the most terms of its points.
+template <class FillRow>
 void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std::int64_t i_end, const LrpRasterGrid& grid,
-                        float* const out[3], bool add, const ViewOf& view_of)
+                        float* const out[3], bool add, const FillRow& fill_row)
 {
     const LrpLattice& lattice = noise.lattice();
     const std::size_t width = std::size_t(grid.width);
@@ -142,34 +164,14 @@ void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std:
         // The lattice row's terms, transposed (a term of every window along the lanes), as many
         // as its windows' most; a window's terms past its own live ones are 0.
         std::vector<float>* const planes[8] = {&row.fx, &row.fy, &row.re[0], &row.re[1], &row.re[2], &row.im[0], &row.im[1], &row.im[2]};
-        int live = 0;
-        for (std::vector<float>* plane : planes) {  // what the kernels read past no terms at all
-            plane->resize(std::max(plane->size(), lrp_raster::padding));
-            std::fill_n(plane->begin(), lrp_raster::padding, 0.0f);
+        float* data[8];
+        for (std::size_t p = 0; p < 8; ++p) {
+            planes[p]->resize(std::max(planes[p]->size(), std::size_t(noise.term_count()) * windows + lrp_raster::padding));
+            data[p] = planes[p]->data();
         }
-        for (std::size_t w = 0; w < lattice_columns; ++w) {
-            const LrpTermView view = view_of(i_begin + std::int64_t(w), j);
-            if (view.live > live) {
-                // More terms than any window before: those rows of the planes start at zero.
-                for (std::vector<float>* plane : planes) {
-                    plane->resize(std::max(plane->size(), std::size_t(view.live) * windows + lrp_raster::padding));
-                    std::fill(plane->begin() + std::ptrdiff_t(std::size_t(live) * windows),
-                              plane->begin() + std::ptrdiff_t(std::size_t(view.live) * windows + lrp_raster::padding), 0.0f);
-                }
-                live = view.live;
-            }
-            for (std::size_t t = 0; t < std::size_t(live); ++t) {
-                const std::size_t at = t * windows + w;
-                const bool held = t < std::size_t(view.live);
-                row.fx[at] = held ? view.fx()[t] : 0.0f, row.fy[at] = held ? view.fy()[t] : 0.0f;
-                for (int c = 0; c < 3; ++c)
-                    row.re[c][at] = held ? view.re(c)[t] : 0.0f, row.im[c][at] = held ? view.im(c)[t] : 0.0f;
-            }
-        }
-        // The windows past the lattice row's (read by the vectors of the last ones) hold zeros.
-        for (std::vector<float>* plane : planes)
-            for (std::size_t t = 0; t < std::size_t(live); ++t)
-                std::fill_n(plane->begin() + std::ptrdiff_t(t * windows + lattice_columns), windows - lattice_columns, 0.0f);
+        const int live = fill_row(j, data, windows);
+        // What the kernels read past the last term (everything, where there are none) holds zeros.
+        for (float* plane : data) std::fill_n(plane + std::size_t(live) * windows, lrp_raster::padding, 0.0f);
         row.terms = live;
         const std::size_t terms = std::size_t(live);
         row.sine.resize(std::max(row.sine.size(), 3 * terms * stride));
@@ -231,12 +233,10 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
                               float* const out[3], bool add)
 {
     const LrpGridWindows needed(noise.lattice(), grid);
-    thread_local LrpTerms scratch;
-    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add, [&](std::int64_t i, std::int64_t j) {
-        scratch.count = 0;
-        noise.draw(i, j, filter, scratch);
-        return scratch.view();
-    });
+    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,
+                       [&](std::int64_t j, float* const planes[8], std::size_t stride) {
+                           return noise.draw_row(needed.i_begin, std::size_t(needed.i_end - needed.i_begin), j, filter, planes, stride);
+                       });
 }
 
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
@@ -249,7 +249,10 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
         if (needed.i_begin >= terms.i_begin() && needed.i_end <= terms.i_end() && needed.j_begin >= terms.j_begin() &&
             needed.j_end <= terms.j_end())
             return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,
-                                      [&](std::int64_t i, std::int64_t j) { return terms.at(i, j); });
+                                      [&](std::int64_t j, float* const planes[8], std::size_t stride) {
+                                          return transpose_row(terms, needed.i_begin, std::size_t(needed.i_end - needed.i_begin), j,
+                                                               planes, stride);
+                                      });
     }
     Scratch& s = scratch();
     const LrpLattice& lattice = noise.lattice();
