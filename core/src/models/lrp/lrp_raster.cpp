@@ -21,13 +21,19 @@ struct LatticeColumn {
     std::size_t at = 0;
 };
 
+/// One stratum's buffers in the separable raster.
+struct LayerScratch {
+    std::vector<float> sum[3];        // per grid row, padded rows
+    std::vector<float> sine, cosine;  // column factors, [term][column]
+    std::vector<float> p, q;          // row factors, [term][channel]
+};
+
 /// One thread's buffers, reused by every region the thread renders.
 struct Scratch {
-    std::vector<float> sum[3], weight, weight_squared;  // per grid row, padded rows
-    std::vector<float> dx, rx2;                         // every lattice column's box of columns, back to back
-    std::vector<LatticeColumn> columns;                 // per lattice column i
-    std::vector<float> sine, cosine;                    // column factors, [term][column]
-    std::vector<float> p, q;                            // row factors, [term][channel]
+    LayerScratch layer[lrp_raster::max_layers];
+    std::vector<float> weight, weight_squared;  // per grid row, padded rows
+    std::vector<float> dx, rx2;                 // every lattice column's box of columns, back to back
+    std::vector<LatticeColumn> columns;         // per lattice column i
 };
 
 Scratch& scratch()
@@ -239,6 +245,16 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
                        });
 }
 
+bool lrp_raster_shares_windows(const LrpStratumNoise& a, const LrpStratumNoise& b)
+{
+    const LrpLattice &p = a.lattice(), &q = b.lattice();
+    for (int axis = 0; axis < 2; ++axis)
+        if (p.origin[axis] != q.origin[axis] || p.spacing[axis] != q.spacing[axis] ||
+            p.inverse_spacing[axis] != q.inverse_spacing[axis] || p.wrap[axis] != q.wrap[axis])
+            return false;
+    return a.normalisation() == b.normalisation();
+}
+
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
                         float* const out[3], LrpRasterMethod method, bool add)
 {
@@ -254,11 +270,20 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
                                                                planes, stride);
                                       });
     }
+    const LrpRasterLayer layer{&noise, &terms, {out[0], out[1], out[2]}, add};
+    lrp_raster_strata(&layer, 1, grid);
+}
+
+void lrp_raster_strata(const LrpRasterLayer* layers, int count, const LrpRasterGrid& grid)
+{
     Scratch& s = scratch();
+    const LrpStratumNoise& noise = *layers[0].noise;
+    const LrpTermCache& terms = *layers[0].terms;  // (every layer's covers the same lattice points)
     const LrpLattice& lattice = noise.lattice();
     const std::size_t row_stride = round_up(std::size_t(grid.width), lrp_raster::padding) + lrp_raster::padding;
     const std::size_t cells = row_stride * std::size_t(grid.height);
-    for (auto& channel : s.sum) reset(channel, cells);
+    for (int l = 0; l < count; ++l)
+        for (auto& channel : s.layer[l].sum) reset(channel, cells);
     reset(s.weight, cells);
     reset(s.weight_squared, cells);
     // A window reaches |d| < 1.5 spacings (rx² < 2.25 in float); the margin covers float rounding,
@@ -304,21 +329,28 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
             const LatticeColumn& column = s.columns[std::size_t(i - terms.i_begin())];
             const int k0 = column.k0, k1 = column.k1;
             if (k0 >= k1) continue;
-            const LrpTermView view = terms.at(i, j);
             // The column tables hold the window's box of columns; each row reads its chord.
             const std::size_t n = std::size_t(k1 - k0), columns = round_up(n, lrp_raster::padding) + lrp_raster::padding;
             const float* const dx = s.dx.data() + column.at;
             const float* const rx2 = s.rx2.data() + column.at;
-            const std::size_t table = columns * std::size_t(view.live);
-            s.sine.resize(std::max(s.sine.size(), table));
-            s.cosine.resize(std::max(s.cosine.size(), table));
-            for (int t = 0; t < view.live; ++t)
-                lrp_raster::sincos_of_products(view.fx()[t], dx, n, s.sine.data() + std::size_t(t) * columns,
-                                               s.cosine.data() + std::size_t(t) * columns);
-            s.p.resize(std::max(s.p.size(), 3 * lrp_raster::factor_plane(view.live)));
-            s.q.resize(std::max(s.q.size(), 3 * lrp_raster::factor_plane(view.live)));
-            const float* const re[3] = {view.re(0), view.re(1), view.re(2)};
-            const float* const im[3] = {view.im(0), view.im(1), view.im(2)};
+            lrp_raster::WindowRow row;
+            row.layers = count;
+            LrpTermView views[lrp_raster::max_layers];
+            for (int l = 0; l < count; ++l) {
+                const LrpTermView& view = views[l] = layers[l].terms->at(i, j);
+                LayerScratch& buffers = s.layer[l];
+                const std::size_t table = columns * std::size_t(view.live);
+                buffers.sine.resize(std::max(buffers.sine.size(), table));
+                buffers.cosine.resize(std::max(buffers.cosine.size(), table));
+                for (int t = 0; t < view.live; ++t)
+                    lrp_raster::sincos_of_products(view.fx()[t], dx, n, buffers.sine.data() + std::size_t(t) * columns,
+                                                   buffers.cosine.data() + std::size_t(t) * columns);
+                buffers.p.resize(std::max(buffers.p.size(), 3 * lrp_raster::factor_plane(view.live)));
+                buffers.q.resize(std::max(buffers.q.size(), 3 * lrp_raster::factor_plane(view.live)));
+                lrp_raster::WindowTerms& layer = row.layer[l];
+                layer.p = buffers.p.data(), layer.q = buffers.q.data(), layer.terms = view.live;
+                layer.channels = layers[l].noise->channels(), layer.stride = columns;
+            }
             for (int r = r0; r < r1; ++r) {
                 const float dy = float(grid.y[r] - yj);
                 const float ry = dy * lattice.inverse_spacing[1];
@@ -332,21 +364,28 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
                     std::tie(c0, c1) = within(grid.x + k0, k1 - k0, xi, half);
                     if (c0 >= c1) continue;
                 }
-                lrp_raster::row_factors(dy, view.fy(), re, im, view.live, s.p.data(), s.q.data());
-                lrp_raster::WindowRow row;
-                row.cosine = s.cosine.data() + c0, row.sine = s.sine.data() + c0, row.stride = columns;
-                row.p = s.p.data(), row.q = s.q.data(), row.terms = view.live, row.channels = noise.channels();
-                row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 const std::size_t at = std::size_t(r) * row_stride + std::size_t(k0 + c0);
-                for (int c = 0; c < 3; ++c) row.sum[c] = s.sum[c].data() + at;
+                for (int l = 0; l < count; ++l) {
+                    const LrpTermView& view = views[l];
+                    LayerScratch& buffers = s.layer[l];
+                    const float* const re[3] = {view.re(0), view.re(1), view.re(2)};
+                    const float* const im[3] = {view.im(0), view.im(1), view.im(2)};
+                    lrp_raster::row_factors(dy, view.fy(), re, im, view.live, buffers.p.data(), buffers.q.data());
+                    lrp_raster::WindowTerms& layer = row.layer[l];
+                    layer.cosine = buffers.cosine.data() + c0, layer.sine = buffers.sine.data() + c0;
+                    for (int c = 0; c < 3; ++c) layer.sum[c] = buffers.sum[c].data() + at;
+                }
+                row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 row.weight = s.weight.data() + at, row.weight_squared = s.weight_squared.data() + at;
                 lrp_raster::accumulate_window_row(row);
             }
         }
     }
-    const float* const sums[3] = {s.sum[0].data(), s.sum[1].data(), s.sum[2].data()};
-    lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
-                          kernel_normalisation(noise.normalisation()), add, out);
+    for (int l = 0; l < count; ++l) {
+        const float* const sums[3] = {s.layer[l].sum[0].data(), s.layer[l].sum[1].data(), s.layer[l].sum[2].data()};
+        lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
+                              kernel_normalisation(noise.normalisation()), layers[l].add, layers[l].out);
+    }
 }
 
 }  // namespace stochtex

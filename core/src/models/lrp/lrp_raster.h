@@ -68,4 +68,24 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
                         float* const out[3], LrpRasterMethod method = LrpRasterMethod::automatic, bool add = false);
 
+/// One stratum of lrp_raster_strata: its terms (LrpTermCache, as lrp_raster_stratum takes them)
+/// and where its values go (a null out[c]: channel c not written; with `add`, out + the value).
+struct LrpRasterLayer {
+    const LrpStratumNoise* noise = nullptr;
+    const LrpTermCache* terms = nullptr;
+    float* out[3] = {nullptr, nullptr, nullptr};
+    bool add = false;
+};
+
+/// Whether two strata have the same windows (lattice and normalisation): the same weights at
+/// every pixel, so lrp_raster_strata may take them together.
+bool lrp_raster_shares_windows(const LrpStratumNoise& a, const LrpStratumNoise& b);
+
+/// lrp_raster_stratum's separable raster of `count` (≤ lrp_raster::max_layers) strata that share
+/// their windows (lrp_raster_shares_windows), their term caches filled for the same lattice points:
+/// each window's weights at each pixel computed once for all of them (a turbulence stratum is a
+/// texture stratum's lattice with other terms). Each layer's values are lrp_raster_stratum's,
+/// bit for bit: the same weights, terms and operations, each layer summing into its own buffers.
+void lrp_raster_strata(const LrpRasterLayer* layers, int count, const LrpRasterGrid& grid);
+
 }  // namespace stochtex

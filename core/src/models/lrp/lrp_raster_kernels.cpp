@@ -106,31 +106,41 @@ struct WindowWeights {
 // table's values are, and so is their interpolation, rounding included), and a sum that starts
 // at +0 and only ever has values added is never −0, so adding ±0 leaves its bits as they are.
 template <std::size_t Channels, class D>
+HWY_INLINE void AddWindowTerms(D d, const WindowTerms& layer, std::size_t k, hn::Vec<D> w)
+{
+    if (layer.terms == 0) return;
+    // sum_terms_separable: one running sum per channel, term after term.
+    const auto zero = hn::Zero(d);
+    const std::size_t plane = factor_plane(layer.terms);
+    hn::Vec<D> local[3] = {zero, zero, zero};
+    for (std::size_t term = 0; term < std::size_t(layer.terms); ++term) {
+        const auto ca = hn::LoadU(d, layer.cosine + term * layer.stride + k);
+        const auto sa = hn::LoadU(d, layer.sine + term * layer.stride + k);
+        for (std::size_t c = 0; c < Channels; ++c)
+            local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, hn::Set(d, layer.p[c * plane + term])),
+                                                 hn::Mul(sa, hn::Set(d, layer.q[c * plane + term]))));
+    }
+    for (std::size_t c = 0; c < Channels; ++c) {
+        const auto sum = hn::LoadU(d, layer.sum[c] + k);
+        hn::StoreU(hn::Add(sum, hn::Mul(w, local[c])), d, layer.sum[c] + k);
+    }
+}
+
+template <class D>
 HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
 {
     const std::size_t lanes = hn::Lanes(d);
     const auto ry2 = hn::Set(d, row.ry2);
-    const auto zero = hn::Zero(d);
-    const std::size_t terms = std::size_t(row.terms), plane = factor_plane(row.terms);
     const WindowWeights<D> window(d);
     for (std::size_t k = 0; k < row.count; k += lanes) {
         const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + k), ry2);
         if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
         const auto w = window(d, y2);
-        if (terms > 0) {
-            // sum_terms_separable: one running sum per channel, term after term.
-            hn::Vec<D> local[3] = {zero, zero, zero};
-            for (std::size_t term = 0; term < terms; ++term) {
-                const auto ca = hn::LoadU(d, row.cosine + term * row.stride + k);
-                const auto sa = hn::LoadU(d, row.sine + term * row.stride + k);
-                for (std::size_t c = 0; c < Channels; ++c)
-                    local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, hn::Set(d, row.p[c * plane + term])),
-                                                         hn::Mul(sa, hn::Set(d, row.q[c * plane + term]))));
-            }
-            for (std::size_t c = 0; c < Channels; ++c) {
-                const auto sum = hn::LoadU(d, row.sum[c] + k);
-                hn::StoreU(hn::Add(sum, hn::Mul(w, local[c])), d, row.sum[c] + k);
-            }
+        for (int l = 0; l < row.layers; ++l) {
+            if (row.layer[l].channels == 1)
+                AddWindowTerms<1>(d, row.layer[l], k, w);
+            else
+                AddWindowTerms<3>(d, row.layer[l], k, w);
         }
         const auto weight = hn::LoadU(d, row.weight + k);
         hn::StoreU(hn::Add(weight, w), d, row.weight + k);
@@ -151,6 +161,7 @@ HWY_INLINE void StoreNormalised(D d, const hn::Vec<D> sum[3], hn::Vec<D> weight,
                        : normalisation == Normalisation::partition ? hn::Div(one, weight)
                                                                    : one;
     for (int c = 0; c < 3; ++c) {
+        if (!out[c]) continue;
         const auto value = hn::Mul(sum[c], scale);
         if (left >= hn::Lanes(d)) {
             hn::StoreU(add ? hn::Add(hn::LoadU(d, out[c] + at), value) : value, d, out[c] + at);
@@ -322,12 +333,7 @@ void SumTermsAt(const LrpTermView& terms, const float* dx, const float* dy, std:
 
 void AccumulateWindowRow(const WindowRow& row)
 {
-    WithWidthFor(row.count, [&](auto d) {
-        if (row.channels == 1)
-            AccumulateWindowRowOf<1>(d, row);
-        else
-            AccumulateWindowRowOf<3>(d, row);
-    });
+    WithWidthFor(row.count, [&](auto d) { AccumulateWindowRowOf(d, row); });
 }
 
 }  // namespace stochtex::lrp_raster::HWY_NAMESPACE
