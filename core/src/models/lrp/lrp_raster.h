@@ -56,8 +56,9 @@ constexpr double lrp_lattice_row_spacing = 16;
 bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid);
 
 /// lrp_raster_stratum by the lattice-row raster, drawing the terms itself a lattice row at a time
-/// (no LrpTermCache of the region: for windows of a few pixels the cache's copy of every
-/// window's terms, several MB a region, cost more than drawing).
+/// (LrpStratumNoise::draw_row: the row's points in the lanes, straight into the raster's layout;
+/// no LrpTermCache of the region: for windows of a few pixels the cache's copy of every window's
+/// terms, several MB a region, cost more than drawing).
 void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
                               float* const out[3], bool add = false);
 
