@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 namespace stochtex {
@@ -154,6 +155,59 @@ TEST(LrpRaster, SimdSineCosineIsTheScalarOneBitForBit)
                 ASSERT_EQ(cosine[k], c) << a << " · " << b[k];
             }
         }
+    }
+    hwy::SetSupportedTargetsForTest(0);
+}
+
+TEST(LrpRaster, RowDrawIsDrawBitForBit)
+{
+    // draw_row (SIMD, lattice points in the lanes) against draw() point by point, on every
+    // target: unfiltered, a footprint that drops some of a window's terms and one that drops
+    // more, plain and periodic (snapped frequencies, wrapped keys), separate and shared phases.
+    static const DiscreteSpectrum ring = ring_spectrum(256, 0.125, 0.01);
+    const LrpStratum stratum = lrp_for_spectrum(ring, 24, 1).strata.front();
+    const auto bits = [](float v) {
+        std::uint32_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    };
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        SCOPED_TRACE(hwy::TargetName(target));
+        for (const bool periodic : {false, true})
+            for (const bool shared : {false, true}) {
+                LrpStratumNoise::Options options;
+                options.seed = 77, options.shared_phase = shared;
+                if (periodic) options.period = {97.0, 61.0};
+                const LrpStratumNoise noise(stratum, 256, options);
+                constexpr std::size_t count = 37, stride = 64;
+                std::vector<float> planes(8 * std::size_t(noise.term_count()) * stride, -1.0f);
+                float* const plane[8] = {&planes[0], &planes[1 * planes.size() / 8], &planes[2 * planes.size() / 8],
+                                         &planes[3 * planes.size() / 8], &planes[4 * planes.size() / 8],
+                                         &planes[5 * planes.size() / 8], &planes[6 * planes.size() / 8],
+                                         &planes[7 * planes.size() / 8]};
+                for (double footprint : {0.0, 2.0, 7.0}) {
+                    const LrpFilter filter = LrpFilter::from_footprint(Footprint2D::square(footprint), 1.0);
+                    for (std::int64_t j : {-3, 0, 5}) {
+                        const std::int64_t i_begin = -13;
+                        const int most = noise.draw_row(i_begin, count, j, filter, plane, stride);
+                        int expected_most = 0;
+                        for (std::size_t w = 0; w < stride; ++w) {
+                            LrpTerms terms;
+                            if (w < count) noise.draw(i_begin + std::int64_t(w), j, filter, terms);
+                            expected_most = std::max(expected_most, terms.live);
+                            for (int t = 0; t < noise.term_count(); ++t)
+                                for (int p = 0; p < 8; ++p) {
+                                    const float expected = t < terms.live ? terms.data[p * LrpTerms::capacity + t] : 0.0f;
+                                    ASSERT_EQ(bits(plane[p][std::size_t(t) * stride + w]), bits(expected))
+                                        << "periodic " << periodic << " shared " << shared << " footprint " << footprint
+                                        << " point " << w << ", " << j << " term " << t << " plane " << p;
+                                }
+                        }
+                        EXPECT_EQ(most, expected_most);
+                    }
+                }
+            }
     }
     hwy::SetSupportedTargetsForTest(0);
 }

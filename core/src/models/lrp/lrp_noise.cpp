@@ -1,4 +1,5 @@
 #include "models/lrp/lrp_noise.h"
+#include "models/lrp/lrp_raster_draw.h"
 #include <stochtex/models/lrp_parameters.h>
 
 #include "numerics/fast_math.h"
@@ -6,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace stochtex {
 
@@ -100,6 +102,9 @@ const PhaseTable& PhaseTable::shared()
             const double phase = 2 * kPi * (i + 0.5) / (1 << bits);
             t.cosine[std::size_t(i)] = float(std::cos(phase));
             t.sine[std::size_t(i)] = float(std::sin(phase));
+            std::uint32_t cosine, sine;
+            std::memcpy(&cosine, &t.cosine[std::size_t(i)], 4), std::memcpy(&sine, &t.sine[std::size_t(i)], 4);
+            t.packed[std::size_t(i)] = cosine | std::uint64_t(sine) << 32;
         }
         return t;
     }();
@@ -138,6 +143,8 @@ LrpStratumNoise::LrpStratumNoise(const LrpStratum& stratum, int spectrum_size, c
         }
     }
     first_.push_back(std::uint32_t(bins_.size() / 2));
+    for (std::size_t b = 0; b + 1 < bins_.size(); b += 2)
+        bin_pairs_.push_back(std::uint32_t(bins_[b]) | std::uint64_t(std::uint32_t(bins_[b + 1])) << 32);
     for (int c = 0; c < 3; ++c) {
         variance_[c] = stratum.sigma[c] * stratum.sigma[c];
         // Normalised windows: the variance is J A²/2 at every point.
@@ -181,6 +188,62 @@ void LrpStratumNoise::draw(std::int64_t i, std::int64_t j, const LrpFilter& filt
         terms.push(float(fx), float(fy), re, im);
     }
     terms.pad();
+}
+
+int LrpStratumNoise::draw_row(std::int64_t i_begin, std::size_t count, std::int64_t j, const LrpFilter& filter,
+                              float* const planes[8], std::size_t stride) const
+{
+    // One thread's buffers, grown once.
+    thread_local std::vector<std::uint64_t> seed;
+    thread_local std::vector<double> fx, fy;
+    thread_local std::vector<float> response;
+    const std::size_t padded = (count + 15) / 16 * 16, cells = std::size_t(term_count_) * stride;
+    seed.resize(std::max(seed.size(), padded));
+    const std::uint64_t row = std::uint64_t(lattice_.wrapped(1, j));
+    for (std::size_t w = 0; w < count; ++w)
+        seed[w] = mix_seed(key_, std::uint64_t(lattice_.wrapped(0, i_begin + std::int64_t(w))), row);
+    const PhaseTable& phases = PhaseTable::shared();
+    lrp_raster::TermRow terms;
+    terms.seed = seed.data(), terms.count = count, terms.terms = term_count_;
+    terms.first = first_.data(), terms.bins = bin_pairs_.data(), terms.inverse_size = inverse_size_;
+    if (period_[0] > 0) terms.period[0] = period_[0], terms.period[1] = period_[1];
+    for (int c = 0; c < 3; ++c) terms.amplitude[c] = amplitude_[std::size_t(c)];
+    terms.shared_phase = shared_phase_, terms.phase_bits = PhaseTable::bits;
+    terms.phases = phases.packed.data();
+    terms.stride = stride, terms.fx = planes[0], terms.fy = planes[1];
+    for (int c = 0; c < 3; ++c) terms.re[c] = planes[2 + c], terms.im[c] = planes[5 + c];
+    if (!filter.identity) {
+        // The response in double from the unrounded frequencies, as draw() takes it.
+        fx.resize(std::max(fx.size(), cells)), fy.resize(std::max(fy.size(), cells));
+        response.resize(std::max(response.size(), cells));
+        terms.fx_exact = fx.data(), terms.fy_exact = fy.data(), terms.response = response.data();
+    }
+    lrp_raster::draw_frequencies(terms);
+    bool dropped = false;
+    if (!filter.identity)
+        for (std::size_t at = 0; at < cells; at += stride)
+            for (std::size_t w = 0; w < count; ++w) {
+                response[at + w] = filter.response(fx[at + w], fy[at + w], spread_);
+                dropped = dropped || !(response[at + w] > 0);
+            }
+    lrp_raster::draw_coefficients(terms);
+    for (int p = 0; p < 8; ++p)
+        for (std::size_t at = 0; at < cells; at += stride) std::fill(planes[p] + at + count, planes[p] + at + stride, 0.0f);
+    if (!dropped) return term_count_;
+    // draw() skips the terms the filter drops: each point's kept terms move down, zeros after.
+    int most = 0;
+    for (std::size_t w = 0; w < count; ++w) {
+        std::size_t kept = 0;
+        for (std::size_t at = 0; at < cells; at += stride)
+            if (response[at + w] > 0) {
+                for (int p = 0; p < 8; ++p) planes[p][kept + w] = planes[p][at + w];
+                kept += stride;
+            }
+        for (std::size_t at = kept; at < cells; at += stride)
+            for (int p = 0; p < 8; ++p) planes[p][at + w] = 0.0f;
+        most = std::max(most, int(kept / stride));
+    }
+    return most;
 }
 
 void LrpStratumNoise::eval(double x, double y, const LrpFilter& filter, float out[3]) const

@@ -259,6 +259,14 @@ public:
     void eval(double x, double y, const LrpFilter& filter, float out[3]) const;
     /// The terms of lattice point (i, j) under `filter`.
     void draw(std::int64_t i, std::int64_t j, const LrpFilter& filter, LrpTerms& terms) const;
+    /// draw() of the lattice points (i_begin + w, j), w < count, at once and transposed (the
+    /// lattice-row raster's layout): term t of point w at [t · stride + w] of each plane (fx, fy,
+    /// re 0–2, im 0–2, LrpTermView's order), a point's terms in draw()'s order and 0 past its own,
+    /// 0 in every lane from `count` to `stride`. Returns the most terms a point has. Each plane
+    /// holds term_count() · stride floats; stride ≥ count rounded up to a multiple of 16. The
+    /// same values as draw(), bit for bit: lrp_raster_draw.h's kernels, lane by lane.
+    int draw_row(std::int64_t i_begin, std::size_t count, std::int64_t j, const LrpFilter& filter, float* const planes[8],
+                 std::size_t stride) const;
 
     const LrpLattice& lattice() const { return lattice_; }
     LrpNormalisation normalisation() const { return normalisation_; }
@@ -285,6 +293,7 @@ private:
     double spread_;  // the window's spectral 75 % radius, cycles per pixel
     int term_count_;
     std::vector<std::int32_t> bins_;   // kx, ky of every stored bin
+    std::vector<std::uint64_t> bin_pairs_;  // the same packed, kx in the low 32 bits (draw_row gathers them)
     std::vector<std::uint32_t> first_; // sub-stratum j's bins: [first_[j], first_[j + 1])
     double min_frequency_ = 0;         // the lowest |f| any draw can have
     std::array<float, 3> amplitude_{};
@@ -295,6 +304,7 @@ private:
 struct PhaseTable {
     static constexpr int bits = 10;
     std::array<float, 1 << bits> cosine, sine;
+    std::array<std::uint64_t, 1 << bits> packed;  // the same: cosine's bits low, sine's high (draw_row gathers them)
     static const PhaseTable& shared();
 };
 

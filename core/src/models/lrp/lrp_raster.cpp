@@ -21,13 +21,19 @@ struct LatticeColumn {
     std::size_t at = 0;
 };
 
+/// One stratum's buffers in the separable raster.
+struct LayerScratch {
+    std::vector<float> sum[3];        // per grid row, padded rows
+    std::vector<float> sine, cosine;  // column factors, [term][column]
+    std::vector<float> p, q;          // row factors, [term][channel]
+};
+
 /// One thread's buffers, reused by every region the thread renders.
 struct Scratch {
-    std::vector<float> sum[3], weight, weight_squared;  // per grid row, padded rows
-    std::vector<float> dx, rx2;                         // every lattice column's box of columns, back to back
-    std::vector<LatticeColumn> columns;                 // per lattice column i
-    std::vector<float> sine, cosine;                    // column factors, [term][column]
-    std::vector<float> p, q;                            // row factors, [term][channel]
+    LayerScratch layer[lrp_raster::max_layers];
+    std::vector<float> weight, weight_squared;  // per grid row, padded rows
+    std::vector<float> dx, rx2;                 // every lattice column's box of columns, back to back
+    std::vector<LatticeColumn> columns;         // per lattice column i
 };
 
 Scratch& scratch()
@@ -99,12 +105,34 @@ lrp_raster::Normalisation kernel_normalisation(LrpNormalisation normalisation)
                                                           : lrp_raster::Normalisation::none;
 }
 
+/// A lattice row's terms from the region's cache, in LrpStratumNoise::draw_row's layout (term t
+/// of point w at [t · stride + w] of each plane, zero past a point's own and from `count` on).
+/// Returns the most terms a point has.
+int transpose_row(const LrpTermCache& terms, std::int64_t i_begin, std::size_t count, std::int64_t j,
+                  float* const planes[8], std::size_t stride)
+{
+    int live = 0;
+    for (std::size_t w = 0; w < count; ++w) live = std::max(live, terms.at(i_begin + std::int64_t(w), j).live);
+    for (std::size_t w = 0; w < count; ++w) {
+        const LrpTermView view = terms.at(i_begin + std::int64_t(w), j);
+        for (std::size_t t = 0; t < std::size_t(live); ++t) {
+            const bool held = t < std::size_t(view.live);
+            for (std::size_t p = 0; p < 8; ++p)
+                planes[p][t * stride + w] = held ? view.data[p * std::size_t(view.stride) + t] : 0.0f;
+        }
+    }
+    for (std::size_t p = 0; p < 8; ++p)
+        for (std::size_t t = 0; t < std::size_t(live); ++t) std::fill(planes[p] + t * stride + count, planes[p] + (t + 1) * stride, 0.0f);
+    return live;
+}
+
 /// The raster for windows a few pixels wide (lrp_raster.h): pixels of a row in the lanes, each
-/// lane with its own 3×3 windows. `view_of(i, j)` gives lattice point (i, j)'s terms (valid until
-/// the next call), for i in [i_begin, i_end) — every pixel's 3×3 windows (the caller checks).
-template <class ViewOf>
+/// lane with its own 3×3 windows. `fill_row(j, planes, stride)` puts lattice row j's terms into
+/// the eight planes (transpose_row's layout, for the lattice columns [i_begin, i_end) — every
+/// pixel's 3×3 windows, the caller checks) and returns the most terms of its points.
+template <class FillRow>
 void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std::int64_t i_end, const LrpRasterGrid& grid,
-                        float* const out[3], bool add, const ViewOf& view_of)
+                        float* const out[3], bool add, const FillRow& fill_row)
 {
     const LrpLattice& lattice = noise.lattice();
     const std::size_t width = std::size_t(grid.width);
@@ -142,34 +170,14 @@ void lattice_row_raster(const LrpStratumNoise& noise, std::int64_t i_begin, std:
         // The lattice row's terms, transposed (a term of every window along the lanes), as many
         // as its windows' most; a window's terms past its own live ones are 0.
         std::vector<float>* const planes[8] = {&row.fx, &row.fy, &row.re[0], &row.re[1], &row.re[2], &row.im[0], &row.im[1], &row.im[2]};
-        int live = 0;
-        for (std::vector<float>* plane : planes) {  // what the kernels read past no terms at all
-            plane->resize(std::max(plane->size(), lrp_raster::padding));
-            std::fill_n(plane->begin(), lrp_raster::padding, 0.0f);
+        float* data[8];
+        for (std::size_t p = 0; p < 8; ++p) {
+            planes[p]->resize(std::max(planes[p]->size(), std::size_t(noise.term_count()) * windows + lrp_raster::padding));
+            data[p] = planes[p]->data();
         }
-        for (std::size_t w = 0; w < lattice_columns; ++w) {
-            const LrpTermView view = view_of(i_begin + std::int64_t(w), j);
-            if (view.live > live) {
-                // More terms than any window before: those rows of the planes start at zero.
-                for (std::vector<float>* plane : planes) {
-                    plane->resize(std::max(plane->size(), std::size_t(view.live) * windows + lrp_raster::padding));
-                    std::fill(plane->begin() + std::ptrdiff_t(std::size_t(live) * windows),
-                              plane->begin() + std::ptrdiff_t(std::size_t(view.live) * windows + lrp_raster::padding), 0.0f);
-                }
-                live = view.live;
-            }
-            for (std::size_t t = 0; t < std::size_t(live); ++t) {
-                const std::size_t at = t * windows + w;
-                const bool held = t < std::size_t(view.live);
-                row.fx[at] = held ? view.fx()[t] : 0.0f, row.fy[at] = held ? view.fy()[t] : 0.0f;
-                for (int c = 0; c < 3; ++c)
-                    row.re[c][at] = held ? view.re(c)[t] : 0.0f, row.im[c][at] = held ? view.im(c)[t] : 0.0f;
-            }
-        }
-        // The windows past the lattice row's (read by the vectors of the last ones) hold zeros.
-        for (std::vector<float>* plane : planes)
-            for (std::size_t t = 0; t < std::size_t(live); ++t)
-                std::fill_n(plane->begin() + std::ptrdiff_t(t * windows + lattice_columns), windows - lattice_columns, 0.0f);
+        const int live = fill_row(j, data, windows);
+        // What the kernels read past the last term (everything, where there are none) holds zeros.
+        for (float* plane : data) std::fill_n(plane + std::size_t(live) * windows, lrp_raster::padding, 0.0f);
         row.terms = live;
         const std::size_t terms = std::size_t(live);
         row.sine.resize(std::max(row.sine.size(), 3 * terms * stride));
@@ -231,12 +239,20 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
                               float* const out[3], bool add)
 {
     const LrpGridWindows needed(noise.lattice(), grid);
-    thread_local LrpTerms scratch;
-    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add, [&](std::int64_t i, std::int64_t j) {
-        scratch.count = 0;
-        noise.draw(i, j, filter, scratch);
-        return scratch.view();
-    });
+    lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,
+                       [&](std::int64_t j, float* const planes[8], std::size_t stride) {
+                           return noise.draw_row(needed.i_begin, std::size_t(needed.i_end - needed.i_begin), j, filter, planes, stride);
+                       });
+}
+
+bool lrp_raster_shares_windows(const LrpStratumNoise& a, const LrpStratumNoise& b)
+{
+    const LrpLattice &p = a.lattice(), &q = b.lattice();
+    for (int axis = 0; axis < 2; ++axis)
+        if (p.origin[axis] != q.origin[axis] || p.spacing[axis] != q.spacing[axis] ||
+            p.inverse_spacing[axis] != q.inverse_spacing[axis] || p.wrap[axis] != q.wrap[axis])
+            return false;
+    return a.normalisation() == b.normalisation();
 }
 
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
@@ -249,13 +265,25 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
         if (needed.i_begin >= terms.i_begin() && needed.i_end <= terms.i_end() && needed.j_begin >= terms.j_begin() &&
             needed.j_end <= terms.j_end())
             return lattice_row_raster(noise, needed.i_begin, needed.i_end, grid, out, add,
-                                      [&](std::int64_t i, std::int64_t j) { return terms.at(i, j); });
+                                      [&](std::int64_t j, float* const planes[8], std::size_t stride) {
+                                          return transpose_row(terms, needed.i_begin, std::size_t(needed.i_end - needed.i_begin), j,
+                                                               planes, stride);
+                                      });
     }
+    const LrpRasterLayer layer{&noise, &terms, {out[0], out[1], out[2]}, add};
+    lrp_raster_strata(&layer, 1, grid);
+}
+
+void lrp_raster_strata(const LrpRasterLayer* layers, int count, const LrpRasterGrid& grid)
+{
     Scratch& s = scratch();
+    const LrpStratumNoise& noise = *layers[0].noise;
+    const LrpTermCache& terms = *layers[0].terms;  // (every layer's covers the same lattice points)
     const LrpLattice& lattice = noise.lattice();
     const std::size_t row_stride = round_up(std::size_t(grid.width), lrp_raster::padding) + lrp_raster::padding;
     const std::size_t cells = row_stride * std::size_t(grid.height);
-    for (auto& channel : s.sum) reset(channel, cells);
+    for (int l = 0; l < count; ++l)
+        for (auto& channel : s.layer[l].sum) reset(channel, cells);
     reset(s.weight, cells);
     reset(s.weight_squared, cells);
     // A window reaches |d| < 1.5 spacings (rx² < 2.25 in float); the margin covers float rounding,
@@ -301,21 +329,28 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
             const LatticeColumn& column = s.columns[std::size_t(i - terms.i_begin())];
             const int k0 = column.k0, k1 = column.k1;
             if (k0 >= k1) continue;
-            const LrpTermView view = terms.at(i, j);
             // The column tables hold the window's box of columns; each row reads its chord.
             const std::size_t n = std::size_t(k1 - k0), columns = round_up(n, lrp_raster::padding) + lrp_raster::padding;
             const float* const dx = s.dx.data() + column.at;
             const float* const rx2 = s.rx2.data() + column.at;
-            const std::size_t table = columns * std::size_t(view.live);
-            s.sine.resize(std::max(s.sine.size(), table));
-            s.cosine.resize(std::max(s.cosine.size(), table));
-            for (int t = 0; t < view.live; ++t)
-                lrp_raster::sincos_of_products(view.fx()[t], dx, n, s.sine.data() + std::size_t(t) * columns,
-                                               s.cosine.data() + std::size_t(t) * columns);
-            s.p.resize(std::max(s.p.size(), 3 * lrp_raster::factor_plane(view.live)));
-            s.q.resize(std::max(s.q.size(), 3 * lrp_raster::factor_plane(view.live)));
-            const float* const re[3] = {view.re(0), view.re(1), view.re(2)};
-            const float* const im[3] = {view.im(0), view.im(1), view.im(2)};
+            lrp_raster::WindowRow row;
+            row.layers = count;
+            LrpTermView views[lrp_raster::max_layers];
+            for (int l = 0; l < count; ++l) {
+                const LrpTermView& view = views[l] = layers[l].terms->at(i, j);
+                LayerScratch& buffers = s.layer[l];
+                const std::size_t table = columns * std::size_t(view.live);
+                buffers.sine.resize(std::max(buffers.sine.size(), table));
+                buffers.cosine.resize(std::max(buffers.cosine.size(), table));
+                for (int t = 0; t < view.live; ++t)
+                    lrp_raster::sincos_of_products(view.fx()[t], dx, n, buffers.sine.data() + std::size_t(t) * columns,
+                                                   buffers.cosine.data() + std::size_t(t) * columns);
+                buffers.p.resize(std::max(buffers.p.size(), 3 * lrp_raster::factor_plane(view.live)));
+                buffers.q.resize(std::max(buffers.q.size(), 3 * lrp_raster::factor_plane(view.live)));
+                lrp_raster::WindowTerms& layer = row.layer[l];
+                layer.p = buffers.p.data(), layer.q = buffers.q.data(), layer.terms = view.live;
+                layer.channels = layers[l].noise->channels(), layer.stride = columns;
+            }
             for (int r = r0; r < r1; ++r) {
                 const float dy = float(grid.y[r] - yj);
                 const float ry = dy * lattice.inverse_spacing[1];
@@ -329,21 +364,28 @@ void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms,
                     std::tie(c0, c1) = within(grid.x + k0, k1 - k0, xi, half);
                     if (c0 >= c1) continue;
                 }
-                lrp_raster::row_factors(dy, view.fy(), re, im, view.live, s.p.data(), s.q.data());
-                lrp_raster::WindowRow row;
-                row.cosine = s.cosine.data() + c0, row.sine = s.sine.data() + c0, row.stride = columns;
-                row.p = s.p.data(), row.q = s.q.data(), row.terms = view.live, row.channels = noise.channels();
-                row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 const std::size_t at = std::size_t(r) * row_stride + std::size_t(k0 + c0);
-                for (int c = 0; c < 3; ++c) row.sum[c] = s.sum[c].data() + at;
+                for (int l = 0; l < count; ++l) {
+                    const LrpTermView& view = views[l];
+                    LayerScratch& buffers = s.layer[l];
+                    const float* const re[3] = {view.re(0), view.re(1), view.re(2)};
+                    const float* const im[3] = {view.im(0), view.im(1), view.im(2)};
+                    lrp_raster::row_factors(dy, view.fy(), re, im, view.live, buffers.p.data(), buffers.q.data());
+                    lrp_raster::WindowTerms& layer = row.layer[l];
+                    layer.cosine = buffers.cosine.data() + c0, layer.sine = buffers.sine.data() + c0;
+                    for (int c = 0; c < 3; ++c) layer.sum[c] = buffers.sum[c].data() + at;
+                }
+                row.rx2 = rx2 + c0, row.ry2 = ry * ry, row.count = std::size_t(c1 - c0);
                 row.weight = s.weight.data() + at, row.weight_squared = s.weight_squared.data() + at;
                 lrp_raster::accumulate_window_row(row);
             }
         }
     }
-    const float* const sums[3] = {s.sum[0].data(), s.sum[1].data(), s.sum[2].data()};
-    lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
-                          kernel_normalisation(noise.normalisation()), add, out);
+    for (int l = 0; l < count; ++l) {
+        const float* const sums[3] = {s.layer[l].sum[0].data(), s.layer[l].sum[1].data(), s.layer[l].sum[2].data()};
+        lrp_raster::normalise(sums, s.weight.data(), s.weight_squared.data(), row_stride, std::size_t(grid.width), grid.height,
+                              kernel_normalisation(noise.normalisation()), layers[l].add, layers[l].out);
+    }
 }
 
 }  // namespace stochtex

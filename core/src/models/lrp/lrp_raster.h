@@ -56,8 +56,9 @@ constexpr double lrp_lattice_row_spacing = 16;
 bool lrp_raster_prefers_lattice_rows(const LrpStratumNoise& noise, const LrpRasterGrid& grid);
 
 /// lrp_raster_stratum by the lattice-row raster, drawing the terms itself a lattice row at a time
-/// (no LrpTermCache of the region: for windows of a few pixels the cache's copy of every
-/// window's terms, several MB a region, cost more than drawing).
+/// (LrpStratumNoise::draw_row: the row's points in the lanes, straight into the raster's layout;
+/// no LrpTermCache of the region: for windows of a few pixels the cache's copy of every window's
+/// terms, several MB a region, cost more than drawing).
 void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& filter, const LrpRasterGrid& grid,
                               float* const out[3], bool add = false);
 
@@ -67,5 +68,25 @@ void lrp_raster_stratum_drawn(const LrpStratumNoise& noise, const LrpFilter& fil
 /// a pass of its own). Buffers: one per-thread scratch, grown once (no allocation per call after that).
 void lrp_raster_stratum(const LrpStratumNoise& noise, const LrpTermCache& terms, const LrpRasterGrid& grid,
                         float* const out[3], LrpRasterMethod method = LrpRasterMethod::automatic, bool add = false);
+
+/// One stratum of lrp_raster_strata: its terms (LrpTermCache, as lrp_raster_stratum takes them)
+/// and where its values go (a null out[c]: channel c not written; with `add`, out + the value).
+struct LrpRasterLayer {
+    const LrpStratumNoise* noise = nullptr;
+    const LrpTermCache* terms = nullptr;
+    float* out[3] = {nullptr, nullptr, nullptr};
+    bool add = false;
+};
+
+/// Whether two strata have the same windows (lattice and normalisation): the same weights at
+/// every pixel, so lrp_raster_strata may take them together.
+bool lrp_raster_shares_windows(const LrpStratumNoise& a, const LrpStratumNoise& b);
+
+/// lrp_raster_stratum's separable raster of `count` (≤ lrp_raster::max_layers) strata that share
+/// their windows (lrp_raster_shares_windows), their term caches filled for the same lattice points:
+/// each window's weights at each pixel computed once for all of them (a turbulence stratum is a
+/// texture stratum's lattice with other terms). Each layer's values are lrp_raster_stratum's,
+/// bit for bit: the same weights, terms and operations, each layer summing into its own buffers.
+void lrp_raster_strata(const LrpRasterLayer* layers, int count, const LrpRasterGrid& grid);
 
 }  // namespace stochtex

@@ -76,51 +76,75 @@ HWY_INLINE hn::Mask<D> InsideWindow(D d, hn::Vec<D> y2)
 }
 
 /// LrpWindowTable::operator() at y2 = rx² + ry², lane by lane (the clamp keeps the gathers in
-/// the table; those lanes are 0).
+/// the table; those lanes are 0). The table and its scale are fetched once per kernel call, not
+/// per vector: LrpWindowTable::shared() is a call into another file, and each call cost a
+/// vzeroupper and the live vectors spilled around it.
 template <class D>
-HWY_INLINE hn::Vec<D> WindowWeight(D d, hn::Vec<D> y2)
-{
-    const hn::RebindToSigned<D> di;
-    const LrpWindowTable& window = LrpWindowTable::shared();
-    const float* table = window.values();
-    const auto extent = hn::Set(d, float(lrp_window_radius * lrp_window_radius));
-    const auto inside = InsideWindow(d, y2);
-    const auto t = hn::Mul(hn::Min(y2, extent), hn::Set(d, window.scale()));
-    const auto i = hn::ConvertTo(di, t);
-    const auto f = hn::Sub(t, hn::ConvertTo(d, i));
-    const auto v0 = hn::GatherIndex(d, table, i), v1 = hn::GatherIndex(d, table, hn::Add(i, hn::Set(di, 1)));
-    return hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
-}
+struct WindowWeights {
+    const float* table;
+    hn::Vec<D> scale;
+
+    explicit WindowWeights(D d, const LrpWindowTable& window = LrpWindowTable::shared())
+        : table(window.values()), scale(hn::Set(d, window.scale()))
+    {
+    }
+    hn::Vec<D> operator()(D d, hn::Vec<D> y2) const
+    {
+        const hn::RebindToSigned<D> di;
+        const auto extent = hn::Set(d, float(lrp_window_radius * lrp_window_radius));
+        const auto inside = InsideWindow(d, y2);
+        const auto t = hn::Mul(hn::Min(y2, extent), scale);
+        // t ≥ 0 (a sum of squares, scaled): int(t) is floor(t), and floor(t) + 2²³ holds it in its
+        // low mantissa bits, exactly; f = t − floor(t) as before. (ConvertTo also fixes up lanes
+        // out of int32's range: four more operations per vector on AVX-512, for none here.)
+        const auto whole = hn::Floor(t);
+        const auto i = hn::Sub(hn::BitCast(di, hn::Add(whole, hn::Set(d, 8388608.0f))), hn::Set(di, 0x4B000000));
+        const auto f = hn::Sub(t, whole);
+        const auto v0 = hn::GatherIndex(d, table, i), v1 = hn::GatherIndex(d, table, hn::Add(i, hn::Set(di, 1)));
+        return hn::IfThenElseZero(inside, hn::Add(v0, hn::Mul(f, hn::Sub(v1, v0))));
+    }
+};
 
 // Where w = 0 (outside the window, or not among a pixel's 3×3), sum_windows skips the window;
 // the kernels add w · local, w and w · w anyway, without a select: each is ±0 there (w ≥ 0: the
 // table's values are, and so is their interpolation, rounding included), and a sum that starts
 // at +0 and only ever has values added is never −0, so adding ±0 leaves its bits as they are.
 template <std::size_t Channels, class D>
+HWY_INLINE void AddWindowTerms(D d, const WindowTerms& layer, std::size_t k, hn::Vec<D> w)
+{
+    if (layer.terms == 0) return;
+    // sum_terms_separable: one running sum per channel, term after term.
+    const auto zero = hn::Zero(d);
+    const std::size_t plane = factor_plane(layer.terms);
+    hn::Vec<D> local[3] = {zero, zero, zero};
+    for (std::size_t term = 0; term < std::size_t(layer.terms); ++term) {
+        const auto ca = hn::LoadU(d, layer.cosine + term * layer.stride + k);
+        const auto sa = hn::LoadU(d, layer.sine + term * layer.stride + k);
+        for (std::size_t c = 0; c < Channels; ++c)
+            local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, hn::Set(d, layer.p[c * plane + term])),
+                                                 hn::Mul(sa, hn::Set(d, layer.q[c * plane + term]))));
+    }
+    for (std::size_t c = 0; c < Channels; ++c) {
+        const auto sum = hn::LoadU(d, layer.sum[c] + k);
+        hn::StoreU(hn::Add(sum, hn::Mul(w, local[c])), d, layer.sum[c] + k);
+    }
+}
+
+template <class D>
 HWY_INLINE void AccumulateWindowRowOf(D d, const WindowRow& row)
 {
     const std::size_t lanes = hn::Lanes(d);
     const auto ry2 = hn::Set(d, row.ry2);
-    const auto zero = hn::Zero(d);
-    const std::size_t terms = std::size_t(row.terms), plane = factor_plane(row.terms);
+    const WindowWeights<D> window(d);
     for (std::size_t k = 0; k < row.count; k += lanes) {
         const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + k), ry2);
         if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
-        const auto w = WindowWeight(d, y2);
-        if (terms > 0) {
-            // sum_terms_separable: one running sum per channel, term after term.
-            hn::Vec<D> local[3] = {zero, zero, zero};
-            for (std::size_t term = 0; term < terms; ++term) {
-                const auto ca = hn::LoadU(d, row.cosine + term * row.stride + k);
-                const auto sa = hn::LoadU(d, row.sine + term * row.stride + k);
-                for (std::size_t c = 0; c < Channels; ++c)
-                    local[c] = hn::Add(local[c], hn::Sub(hn::Mul(ca, hn::Set(d, row.p[c * plane + term])),
-                                                         hn::Mul(sa, hn::Set(d, row.q[c * plane + term]))));
-            }
-            for (std::size_t c = 0; c < Channels; ++c) {
-                const auto sum = hn::LoadU(d, row.sum[c] + k);
-                hn::StoreU(hn::Add(sum, hn::Mul(w, local[c])), d, row.sum[c] + k);
-            }
+        const auto w = window(d, y2);
+        for (int l = 0; l < row.layers; ++l) {
+            if (row.layer[l].channels == 1)
+                AddWindowTerms<1>(d, row.layer[l], k, w);
+            else
+                AddWindowTerms<3>(d, row.layer[l], k, w);
         }
         const auto weight = hn::LoadU(d, row.weight + k);
         hn::StoreU(hn::Add(weight, w), d, row.weight + k);
@@ -141,6 +165,7 @@ HWY_INLINE void StoreNormalised(D d, const hn::Vec<D> sum[3], hn::Vec<D> weight,
                        : normalisation == Normalisation::partition ? hn::Div(one, weight)
                                                                    : one;
     for (int c = 0; c < 3; ++c) {
+        if (!out[c]) continue;
         const auto value = hn::Mul(sum[c], scale);
         if (left >= hn::Lanes(d)) {
             hn::StoreU(add ? hn::Add(hn::LoadU(d, out[c] + at), value) : value, d, out[c] + at);
@@ -228,7 +253,7 @@ void GatheredSinCos(const float* a, const std::int32_t* index, std::int32_t offs
 /// One vector of pixels of a PixelRow from k: the 3×3 windows in sum_windows' order, then the
 /// normalisation; each lane's row factors by LaneWindows.
 template <bool Permute, class D>
-HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
+HWY_INLINE void PixelVector(D d, const PixelRow& row, const WindowWeights<D>& window, std::size_t k)
 {
     const auto zero = hn::Zero(d);
     const LaneWindows<D> windows(d, row.window + k);
@@ -241,7 +266,7 @@ HWY_INLINE void PixelVector(D d, const PixelRow& row, std::size_t k)
         for (int dix = 0; dix < 3; ++dix) {
             const auto y2 = hn::Add(hn::LoadU(d, row.rx2 + std::size_t(dix) * row.stride + k), ry2);
             if (hn::AllFalse(d, InsideWindow(d, y2))) continue;
-            const auto w = WindowWeight(d, y2);
+            const auto w = window(d, y2);
             // Slot dix's window of each lane is window + dix − 1.
             const auto expand = [&](const float* factors) { return windows.template of<Permute>(d, factors, dix - 1); };
             // sum_terms_separable's running sums, the window's zero terms past its live ones
@@ -271,12 +296,13 @@ void AccumulatePixelRow(const PixelRow& row)
 {
     const hn::ScalableTag<float> d;
     const std::size_t lanes = hn::Lanes(d);
+    const WindowWeights<hn::ScalableTag<float>> window(d);
     for (std::size_t k = 0; k < row.count; k += lanes) {
         // (The padding repeats the last window: a vector past the row reads its own padding.)
         if (LaneWindows<decltype(d)>::permutable(d, row.window + k))
-            PixelVector<true>(d, row, k);
+            PixelVector<true>(d, row, window, k);
         else
-            PixelVector<false>(d, row, k);
+            PixelVector<false>(d, row, window, k);
     }
 }
 
@@ -311,12 +337,7 @@ void SumTermsAt(const LrpTermView& terms, const float* dx, const float* dy, std:
 
 void AccumulateWindowRow(const WindowRow& row)
 {
-    WithWidthFor(row.count, [&](auto d) {
-        if (row.channels == 1)
-            AccumulateWindowRowOf<1>(d, row);
-        else
-            AccumulateWindowRowOf<3>(d, row);
-    });
+    WithWidthFor(row.count, [&](auto d) { AccumulateWindowRowOf(d, row); });
 }
 
 }  // namespace stochtex::lrp_raster::HWY_NAMESPACE

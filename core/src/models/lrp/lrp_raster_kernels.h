@@ -32,23 +32,35 @@ constexpr std::size_t factor_plane(int terms) { return (std::size_t(terms) + pad
 void row_factors(float dy, const float* fy, const float* const re[3], const float* const im[3], int terms, float* p,
                  float* q);
 
-/// One window's contribution to a row of pixels. Term t of the window is
-///   ca·P_c − sa·Q_c,  (ca, sa) = (cosine, sine)[t·stride + k] (its column factor at pixel k),
-/// P_c = p[c · factor_plane(terms) + t], Q_c likewise (its row factors, row_factors()),, summed in sum_terms_separable's four partial sums; the window weight is
-/// w = LrpWindowTable(rx2[k] + ry2) and, where w > 0 (as sum_windows skips the others),
-///   sum_c[k] += w · local_c,  weight[k] += w,  weight_squared[k] += w · w.
-struct WindowRow {
+/// One window's terms in a WindowRow: term t is ca·P_c − sa·Q_c, (ca, sa) = (cosine, sine)[t·stride
+/// + k] (its column factor at pixel k), P_c = p[c · factor_plane(terms) + t], Q_c likewise (its row
+/// factors, row_factors()), summed in sum_terms_separable's running sum per channel into `local`;
+/// then sum_c[k] += w · local_c.
+struct WindowTerms {
     const float* cosine = nullptr;
     const float* sine = nullptr;
     std::size_t stride = 0;
     const float* p = nullptr;
     const float* q = nullptr;
-    int terms = 0;  ///< the window's live terms (LrpTermView::live); 0: weights only
+    int terms = 0;     ///< the window's live terms (LrpTermView::live); 0: nothing to add
     int channels = 3;  ///< 1: only channel 0 (the others' terms are 0: their sums stay +0)
+    float* sum[3] = {nullptr, nullptr, nullptr};
+};
+
+/// Strata whose windows are the same (one lattice, one normalisation) share a WindowRow: the
+/// weights are computed once for all of them.
+constexpr int max_layers = 3;
+
+/// One window's contribution to a row of pixels, for each of `layers` strata that share the
+/// window (WindowTerms). The window weight is w = LrpWindowTable(rx2[k] + ry2) and, where w > 0
+/// (as sum_windows skips the others), each layer's sums get w · local and
+///   weight[k] += w,  weight_squared[k] += w · w.
+struct WindowRow {
+    WindowTerms layer[max_layers];
+    int layers = 1;
     const float* rx2 = nullptr;  ///< (dx / spacing)² per pixel; > 2.25 past the window (w = 0)
     float ry2 = 0;
     std::size_t count = 0;
-    float* sum[3] = {nullptr, nullptr, nullptr};
     float* weight = nullptr;
     float* weight_squared = nullptr;
 };
@@ -94,7 +106,7 @@ void accumulate_pixel_row(const PixelRow& row);
 
 /// sum_windows' normalisation of `rows` rows of `width` sums: out[c][r · width + k] =
 /// sum[c][r · stride + k] · scale, scale = 1/√weight_squared, 1/weight or 1 (with `add`, out +
-/// that). Reads the sums up to the padding past each row.
+/// that), for the channels whose out[c] is not null. Reads the sums up to the padding past each row.
 void normalise(const float* const sum[3], const float* weight, const float* weight_squared, std::size_t stride,
                std::size_t width, int rows, Normalisation normalisation, bool add, float* const out[3]);
 

@@ -110,13 +110,14 @@ Rgb LrpTexture::eval(const Vec2& uv, const Footprint2D& footprint) const
 
 namespace {
 
-/// One thread's term cache, reused stratum after stratum and region after region: a fresh one per
+/// One thread's term caches, reused stratum after stratum and region after region: a fresh one per
 /// stratum grew its buffers term by term (reallocations and copies were ~6 % of eval_region).
-/// One RegionTerms at a time per thread holds it (stratum_values, one stratum after another).
-LrpTermCache& thread_term_cache()
+/// Cache 0 serves stratum_values (one stratum after another); SharedWindows holds one per stratum
+/// it sums together.
+LrpTermCache& thread_term_cache(int index = 0)
 {
-    thread_local LrpTermCache cache;
-    return cache;
+    thread_local LrpTermCache caches[lrp_raster::max_layers];
+    return caches[index];
 }
 
 /// The lattice points whose windows reach a raster region, with their terms drawn once for the
@@ -124,7 +125,7 @@ LrpTermCache& thread_term_cache()
 /// cells per pixel: those draw per pixel, as eval() does).
 struct RegionTerms {
     bool cached = false;
-    LrpTermCache& terms = thread_term_cache();
+    LrpTermCache& terms;
 
     /// Whether drawing the region's windows once pays (not more than ~4 per pixel).
     static bool pays(const LrpGridWindows& box, std::size_t pixels)
@@ -132,8 +133,9 @@ struct RegionTerms {
         return double(box.i_end - box.i_begin) * double(box.j_end - box.j_begin) <= 4.0 * double(pixels) + 64;
     }
 
-    RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpGridWindows& box, std::size_t pixels)
-        : cached(pays(box, pixels))
+    RegionTerms(const LrpStratumNoise& stratum, const LrpFilter& filter, const LrpGridWindows& box, std::size_t pixels,
+                LrpTermCache& cache = thread_term_cache())
+        : cached(pays(box, pixels)), terms(cache)
     {
         if (cached)
             terms.fill(box.i_begin, box.j_begin, int(box.i_end - box.i_begin), int(box.j_end - box.j_begin),
@@ -179,6 +181,34 @@ void stratum_values(const LrpStratumNoise& stratum, const LrpFilter& filter, con
         }
 }
 
+/// Strata that share their windows (lrp_raster_shares_windows) and take the separable raster
+/// over cached terms (stratum_values' choice for them), summed by one pass (lrp_raster_strata):
+/// each window's weights computed once for all. Each stratum's terms go to a cache of its own.
+class SharedWindows {
+public:
+    SharedWindows(const LrpRasterGrid& grid) : grid_(grid) {}
+
+    /// Takes `stratum` (out, add: as stratum_values') where it shares the first one's windows and
+    /// stratum_values would take the separable raster; false (nothing done) where not, or full.
+    bool take(const LrpStratumNoise& stratum, const LrpFilter& filter, float* const out[3], bool add)
+    {
+        const std::size_t pixels = std::size_t(grid_.width) * std::size_t(grid_.height);
+        const LrpGridWindows box(stratum.lattice(), grid_);
+        if (count_ == lrp_raster::max_layers || !RegionTerms::pays(box, pixels) || lrp_raster_prefers_lattice_rows(stratum, grid_) ||
+            (count_ > 0 && !lrp_raster_shares_windows(*layers_[0].noise, stratum)))
+            return false;
+        const RegionTerms terms(stratum, filter, box, pixels, thread_term_cache(count_));
+        layers_[count_++] = {&stratum, &terms.terms, {out[0], out[1], out[2]}, add};
+        return true;
+    }
+    void run() const { lrp_raster_strata(layers_, count_, grid_); }
+
+private:
+    LrpRasterGrid grid_;
+    LrpRasterLayer layers_[lrp_raster::max_layers];
+    int count_ = 0;
+};
+
 }  // namespace
 
 void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) const
@@ -205,14 +235,35 @@ void LrpTexture::eval_region(const RasterRegion& region, const RgbOutput& rgb) c
     }
     float* const value[3] = {s.value[0].data(), s.value[1].data(), s.value[2].data()};
     float* const m[3] = {s.m[0].data(), s.m[1].data(), s.m[2].data()};
-    for (const LrpStratumNoise& stratum : strata_)
-        if (stratum.survives(filter)) stratum_values(stratum, filter, grid, m, true);  // m += the stratum
+    // The turbulence strata are unfiltered strata on the same grid, each on the lattice of one of
+    // the first texture strata: summed with that one where both take the separable raster (the
+    // window weights once for all), else on their own.
+    bool turbulence_done[2][2] = {};
+    for (const LrpStratumNoise& stratum : strata_) {
+        if (!stratum.survives(filter)) continue;
+        SharedWindows shared(grid);
+        if (!shared.take(stratum, filter, m, true)) {
+            stratum_values(stratum, filter, grid, m, true);  // m += the stratum
+            continue;
+        }
+        for (int component = 0; structure_ && component < 2; ++component) {
+            const std::vector<LrpStratumNoise>& turbulence = structure_->turbulence_strata(component);
+            for (std::size_t k = 0; k < turbulence.size(); ++k) {
+                std::vector<float>& values = s.turbulence[component][k];
+                values.resize(pixels);
+                float* const out[3] = {values.data(), nullptr, nullptr};  // (channel 0 alone: σ = (1, 0, 0))
+                if (!turbulence_done[component][k]) turbulence_done[component][k] = shared.take(turbulence[k], LrpFilter{}, out, false);
+            }
+        }
+        shared.run();
+    }
 
     if (structure_) {
-        // The turbulence strata are unfiltered strata on the same grid; the blocks are drawn once.
+        // The blocks are drawn once.
         for (int component = 0; component < 2; ++component) {
             const std::vector<LrpStratumNoise>& turbulence = structure_->turbulence_strata(component);
             for (std::size_t k = 0; k < turbulence.size(); ++k) {
+                if (turbulence_done[component][k]) continue;
                 stratum_values(turbulence[k], LrpFilter{}, grid, value, false);
                 s.turbulence[component][k].assign(s.value[0].begin(), s.value[0].begin() + std::ptrdiff_t(pixels));
             }
