@@ -2,8 +2,9 @@
 # The raster-speed targets (issue 17) in one table: each path's benchmark at 1 and 2 threads,
 # 512², full colour, filtered, histograms on, medians of `rounds` repetitions, with the
 # references the issue names measured in the same run (libnoise Perlin 3D; OSL's gabor() follows
-# from it). Usage: bench/targets.sh [build-dir] [rounds]   (defaults: build, 3). About 4 minutes
-# on 2 cores; run it on an idle machine (the load average is printed: Mpix/s are wall-clock).
+# from it). Usage: bench/targets.sh [build-dir] [rounds]   (defaults: build, 3). About 1 minute
+# (AMD EPYC) to 4 (Intel Xeon) on 2 cores; run it on an idle machine (the load average is
+# printed: Mpix/s are wall-clock).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
