@@ -13,7 +13,7 @@ import shutil
 import bpy
 
 from . import material, stex_cli
-from .properties import has_osl
+from .properties import has_osl, registry
 
 
 def _preferences(context):
@@ -261,8 +261,10 @@ class STOCHTEX_OT_analyze(_StexPipeline, bpy.types.Operator):
             photo = _photo_path(settings.image or _active_image_node_image(self.mat), self.work)
         self.texture_name = bpy.path.clean_name(os.path.splitext(os.path.basename(photo))[0]) or "texture"
         self.stex_path = self.work.file(self.texture_name + ".stex")
-        analysis = stex_cli.analyze_args(photo, self.stex_path, None if settings.model == "NONE" else settings.model, settings.histogram, settings.seed,
-                                         settings.unit_size)
+        model = None if settings.model == "NONE" else settings.model
+        options = stex_cli.option_args(settings.analysis_options, stex_cli.analysis_options(registry(context), model or "auto"))
+        analysis = stex_cli.analyze_args(photo, self.stex_path, model, settings.histogram, settings.seed,
+                                         settings.unit_size, options)
         return [("analysis", analysis)] + _render_steps(self, settings, self.stex_path, self.texture_name)
 
     def finish(self, context):

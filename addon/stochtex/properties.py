@@ -24,17 +24,28 @@ _ROUTES_WITH_OSL = [_BAKED, _SOLID, _OSL]
 
 
 # The models come from the core's registry (`stex models --json`), asked once per session.
+_registry_cache = []
 _models_cache = []
+
+
+def registry(context):
+    """The core's model registry (stex_cli.list_models), cached; raises StexError without stex."""
+    if not _registry_cache:
+        from . import stex_cli
+        try:
+            prefs = context.preferences.addons[__package__].preferences if context else None
+        except (KeyError, AttributeError):
+            prefs = None
+        _registry_cache.extend(stex_cli.list_models(stex_cli.find_stex(getattr(prefs, "stex_path", ""))))
+    return _registry_cache
 
 
 def _models(self, context):
     if not _models_cache:
         from . import stex_cli
         try:
-            prefs = context.preferences.addons[__package__].preferences if context else None
-            executable = stex_cli.find_stex(getattr(prefs, "stex_path", ""))
-            _models_cache.extend(stex_cli.analysable_models(stex_cli.list_models(executable)))
-        except (stex_cli.StexError, KeyError, AttributeError) as error:
+            _models_cache.extend(stex_cli.analysable_models(registry(context)))
+        except stex_cli.StexError as error:
             return [("NONE", "(stex not found)", str(error))]
     return _models_cache
 
@@ -66,6 +77,14 @@ class StochtexSettings(bpy.types.PropertyGroup):
         ("auto", "Auto", "Match each channel's histogram where it measurably helps"),
         ("on", "On", "Always match the photo's histograms"),
         ("off", "Off", "Gaussian channels")])
+    analysis_options: StringProperty(
+        name="Options", default="",
+        description="The model's analysis options as key=value pairs, e.g. filter-taps=1 (tiling: faster, "
+                    "less accurate filtering) or J=80 (lrp); empty: the defaults. Options lists each with its "
+                    "range and default (docs/blender.md)")
+    show_analysis_options: BoolProperty(name="Analysis options (key=value)", default=False,
+                                        description="List the chosen model's analysis options, each with its "
+                                                    "range and default")
     unit_size: FloatProperty(name="Photo width", default=1.0, min=1e-4, unit="LENGTH",
                              description="Physical width of the photo: the texture's scale on objects")
     # The result

@@ -39,10 +39,50 @@ def find_stex(preference=""):
     return found
 
 
-def analyze_args(photo, output, model=None, histogram="auto", seed=1, unit_size_m=1.0):
-    """model None: the core's default model."""
+def analyze_args(photo, output, model=None, histogram="auto", seed=1, unit_size_m=1.0, options=()):
+    """model None: the core's default model; options: more CLI arguments (option_args)."""
     args = ["analyze", photo, "-o", output] + (["--model", model] if model else [])
-    return args + ["--histogram", histogram, "--seed", str(int(seed)), "--unit-size", repr(float(unit_size_m))]
+    return args + ["--histogram", histogram, "--seed", str(int(seed)), "--unit-size", repr(float(unit_size_m))] + list(options)
+
+
+def analysis_options(models, model):
+    """The registry's analysis options (dicts: key, type, range, default, unit, doc, and "model",
+    the model's name) that analysing as `model` takes: that model's, or with "auto" those of
+    every model that analyses photos (the CLI passes each to its model)."""
+    return [dict(option, model=m["name"]) for m in models
+            if m.get("capabilities", {}).get("analysis") and model in ("auto", m["name"])
+            for option in m.get("analysis_options", [])]
+
+
+def describe_option(option):
+    """The panel's two columns for an option: its key and "2 · [1, 4] taps per axis", its
+    default then its range (first the default: a narrow sidebar elides a line's end)."""
+    kind = " ".join(part for part in (option.get("range", ""), option.get("unit", "")) if part)
+    return option["key"], " · ".join(part for part in (option.get("default", ""), kind) if part)
+
+
+def option_args(text, options):
+    """The CLI arguments for the panel's analysis options: "key=value" pairs separated by spaces
+    or commas ("filter-taps=1, J=80"; a leading "--" is allowed). A key none of `options`
+    (analysis_options) has, a pair without "=" or a key given twice is an error naming it; the
+    values are the CLI's to check (its message names the option and its range)."""
+    known = {option["key"]: option for option in options}
+    args, seen = [], set()
+    for pair in text.replace(",", " ").split():
+        key, equals, value = pair.partition("=")
+        key = key[2:] if key.startswith("--") else key
+        if not equals or not key or not value:
+            example = known.get(key) or next(iter(known.values()), {"key": "key", "default": "value"})
+            raise StexError("analysis option '%s': write it as key=value (e.g. %s=%s)" % (
+                pair, example["key"], example["default"] or "1"))
+        if key not in known:
+            valid = ", ".join(sorted(known)) or "none"
+            raise StexError("analysis option '%s': not an option of this model (its options: %s)" % (key, valid))
+        if key in seen:
+            raise StexError("analysis option '%s' is given twice" % key)
+        seen.add(key)
+        args += ["--" + key, value]
+    return args
 
 
 def list_models(executable):

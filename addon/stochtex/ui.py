@@ -1,9 +1,45 @@
 """The panel, in two places: the Shader Editor's sidebar (tab "stochtex") and Material properties."""
 
+import textwrap
+
 import bpy
 
 from . import stex_cli
-from .properties import has_osl
+from .properties import has_osl, registry
+
+
+def draw_analysis_options(box, settings):
+    """The options field, checked as it is typed, under a disclosure that lists the chosen
+    model's options (from the core's registry: the panel knows none of them itself)."""
+    try:
+        options = stex_cli.analysis_options(registry(bpy.context), settings.model)
+    except stex_cli.StexError:
+        return  # the model menu says "(stex not found)"
+    if not options and not settings.analysis_options:
+        return
+    box.prop(settings, "show_analysis_options", emboss=False,
+             icon="TRIA_DOWN" if settings.show_analysis_options else "TRIA_RIGHT")
+    if settings.show_analysis_options:
+        column = box.column(align=True)
+        row = column.split(factor=0.5)
+        row.label(text="option")
+        row.label(text="default · range")
+        models = list(dict.fromkeys(option["model"] for option in options))
+        for model in models:
+            if len(models) > 1:
+                column.label(text=model.capitalize() + ":")
+            for option in (o for o in options if o["model"] == model):
+                key, summary = stex_cli.describe_option(option)
+                row = column.split(factor=0.5)
+                row.label(text=key)
+                row.label(text=summary)
+    box.prop(settings, "analysis_options", text="")
+    try:
+        stex_cli.option_args(settings.analysis_options, options)
+    except stex_cli.StexError as error:
+        # Wrapped: the sidebar elides a long label's middle, and this one is the fix's instructions.
+        for k, line in enumerate(textwrap.wrap(str(error), 26)):
+            box.label(text=line, icon="ERROR" if k == 0 else "BLANK1")
 
 
 def draw_settings(layout, mat):
@@ -14,6 +50,7 @@ def draw_settings(layout, mat):
     row = box.row()
     row.prop(settings, "model", text="")
     row.prop(settings, "histogram", text="")
+    draw_analysis_options(box, settings)
     box.prop(settings, "unit_size")
     box.operator("stochtex.analyze", icon="SHADING_TEXTURE")
     if settings.chosen_model:

@@ -7,6 +7,7 @@ Writes OUT/checks.json: one entry per check, {"ok": bool, "detail": str}.
 
 import glob
 import importlib
+import json
 import os
 import sys
 import tempfile
@@ -94,6 +95,19 @@ analysable = [m[0] for m in stex_cli.analysable_models(stex_cli.list_models(stex
 checks["auto shows its choice"] = {
     "ok": result == {"FINISHED"} and mat.stochtex.model == "auto" and mat.stochtex.chosen_model.split("/")[0] in analysable,
     "detail": "%s, model %s, analysed as %r" % (result, mat.stochtex.model, mat.stochtex.chosen_model)}
+
+# Analysis options (the registry's, typed as key=value): an option the model does not take is a
+# report naming it; tiling's filter-taps=1 reaches the stored texture.
+mat.stochtex.model = "tiling"
+mat.stochtex.analysis_options = "J=80"
+expect_report("option of another model", "not an option of this model", lambda: bpy.ops.stochtex.analyze(filepath=args.photo))
+mat.stochtex.analysis_options = "filter-taps=1, exemplar-size=64"
+result = bpy.ops.stochtex.analyze(filepath=args.photo)
+stored = json.loads(mat.stochtex.stex_text.as_string()) if result == {"FINISHED"} else {}
+checks["analysis options reach the texture"] = {
+    "ok": stored.get("model") == "tiling" and stored.get("parameters", {}).get("filter_taps") == 1,
+    "detail": "%s, model %s, filter_taps %s" % (result, stored.get("model"), stored.get("parameters", {}).get("filter_taps"))}
+mat.stochtex.analysis_options = ""
 
 # A good run, then every tweak and a morph (of the texture with itself, at t = 0.5).
 mat.stochtex.model = "wavelet"

@@ -79,6 +79,32 @@ class StexCliTest(unittest.TestCase):
         self.assertTrue(os.path.isfile(out))
         self.assertFalse(os.path.exists(out + ".tmp"))
 
+    def test_analysis_options_come_from_the_registry_and_reach_the_file(self):
+        models = stex_cli.list_models(self.stex)
+        tiling = stex_cli.analysis_options(models, "tiling")
+        self.assertIn("filter-taps", [o["key"] for o in tiling])
+        self.assertTrue(all(o["model"] == "tiling" for o in tiling))
+        self.assertNotIn("filter-taps", [o["key"] for o in stex_cli.analysis_options(models, "wavelet")])
+        # Auto takes every analysing model's options (the CLI hands each to its model).
+        every = [(o["model"], o["key"]) for o in stex_cli.analysis_options(models, "auto")]
+        self.assertEqual(every, [(m["name"], o["key"]) for m in models if m["capabilities"]["analysis"]
+                                 for o in m["analysis_options"]])
+        key, summary = stex_cli.describe_option(next(o for o in tiling if o["key"] == "filter-taps"))
+        self.assertEqual(key, "filter-taps")
+        self.assertTrue(summary.startswith("2 · [1, 4] taps"), summary)
+        out = os.path.join(self.dir, "one_tap.stex")
+        stex_cli.run(self.stex, stex_cli.analyze_args(PHOTO, out, "tiling", options=stex_cli.option_args(
+            "filter-taps=1, exemplar-size=64", tiling)))
+        with open(out) as f:
+            self.assertEqual(json.load(f)["parameters"]["filter_taps"], 1)
+        # A value out of range is the CLI's to reject, naming the option and its range.
+        with self.assertRaises(stex_cli.StexError) as caught:
+            stex_cli.run(self.stex, stex_cli.analyze_args(PHOTO, out + ".bad", "tiling",
+                                                          options=stex_cli.option_args("filter-taps=9", tiling)))
+        self.assertIn("--filter-taps", str(caught.exception))
+        self.assertIn("[1, 4]", str(caught.exception))
+        self.assertFalse(os.path.exists(out + ".bad"))
+
     def test_errors_are_stex_messages(self):
         not_image = os.path.join(self.dir, "notes.png")
         with open(not_image, "w") as f:
@@ -159,6 +185,20 @@ class PureTest(unittest.TestCase):
         self.assertLessEqual(len(manifest["tagline"]), 64)
         for key in ("schema_version", "id", "name", "maintainer", "blender_version_min", "license"):
             self.assertIn(key, manifest)
+
+    def test_option_args(self):
+        options = [{"key": "filter-taps", "default": "2", "model": "tiling"}, {"key": "J", "default": "50", "model": "lrp"}]
+        self.assertEqual(stex_cli.option_args("", options), [])
+        self.assertEqual(stex_cli.option_args(" filter-taps=1,J=80  ", options),
+                         ["--filter-taps", "1", "--J", "80"])
+        self.assertEqual(stex_cli.option_args("--J=9", options), ["--J", "9"])
+        for text, named in (("psd=periodic", "'psd'"), ("J", "J=50"), ("=3", "'=3'"), ("psd", "filter-taps=2"), ("J=1 J=2", "'J' is given twice")):
+            with self.assertRaises(stex_cli.StexError) as caught:
+                stex_cli.option_args(text, options)
+            self.assertIn(named, str(caught.exception))
+        with self.assertRaises(stex_cli.StexError) as caught:
+            stex_cli.option_args("J=1", options[:1])
+        self.assertIn("its options: filter-taps", str(caught.exception))
 
     def test_period(self):
         self.assertEqual(stex_cli.period_units({"scale": {"pixels_per_unit": 512}}, 1024), 2.0)
