@@ -5,6 +5,7 @@
 #include "colour/histogram_map.h"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <random>
@@ -47,6 +48,37 @@ TEST(MonotoneCubic, InterpolatesKnotsStaysMonotoneAndClamps)
     }
     EXPECT_EQ(f(-10), 0);
     EXPECT_EQ(f(10), 3);
+}
+
+TEST(MonotoneCubic, BatchEvaluationIsBitIdenticalForEveryKnotCountAndInstructionSet)
+{
+    // eval() reads the knot arrays as register tables of 1 to 4 vectors (a count per vector
+    // width) or by gathers beyond: every knot count from 2 to 40, uniform knots (the segment by
+    // a product) and uneven ones (by counting), at the knots, between and outside them.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int knots = 2; knots <= 40; ++knots)
+        for (const bool even : {true, false}) {
+            std::vector<double> x(static_cast<std::size_t>(knots), 0.0), y(x);
+            double position = -1.3, value = -2.0;
+            for (int k = 0; k < knots; ++k) {
+                x[std::size_t(k)] = even ? -1.3 + 0.37 * k : (position += 0.05 + uniform(rng));
+                y[std::size_t(k)] = (value += uniform(rng) * (k % 3 == 0 ? 0.0 : 1.0));
+            }
+            const MonotoneCubic f(x, y);
+            std::vector<double> t;
+            for (const double knot : x) t.insert(t.end(), {knot, std::nextafter(knot, -1e9), std::nextafter(knot, 1e9)});
+            for (int k = 0; k < 301; ++k) t.push_back(x.front() - 1 + (x.back() - x.front() + 2) * uniform(rng));
+            std::vector<double> out(t.size());
+            for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+                hwy::SetSupportedTargetsForTest(target);
+                f.eval(t.data(), out.data(), t.size());
+                for (std::size_t i = 0; i < t.size(); ++i)
+                    ASSERT_EQ(out[i], f(t[i])) << knots << (even ? " even" : " uneven") << " knots, t = " << t[i]
+                                               << ", " << hwy::TargetName(target);
+            }
+            hwy::SetSupportedTargetsForTest(0);
+        }
 }
 
 TEST(EmpiricalDistribution, QuantilesAndGaussianisation)

@@ -36,8 +36,11 @@ using small_table::HWY_NAMESPACE::SmallTable;  // the knot arrays are short
 
 /// out[i] = f(t[i]): MonotoneCubic::operator(), lane-wise. Lanes outside
 /// (x₀, x_n) take an end value; their segment is clamped too, so every read stays inside.
-template <class Read>
-void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_t count, const Read& read)
+/// `at(index)` locates the lanes' entries once; its result's `(array)` reads one of the arrays
+/// there (0 … 5: x, inverse_width, y, c1, c2, c3), so the segment's six reads share the work
+/// that depends on the index alone.
+template <class At>
+void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_t count, const At& at)
 {
     const hn::ScalableTag<double> d;
     const hn::RebindToSigned<decltype(d)> di;
@@ -55,9 +58,13 @@ void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_
         if (f.uniform) {
             // size_t((t − x₀)·inverse_step), at most the last segment (min and truncation commute).
             const auto position = hn::Min(hn::Max(hn::Mul(hn::Sub(v, x_front), inverse_step), zero), top);
-            const auto segment = hn::ConvertTo(di, position);
-            const auto x_at = read(0, segment);
-            const auto x_next = read(0, hn::Add(segment, one));
+            // position ∈ [0, knots): floor(position) + 2⁵² holds floor(position), which is its
+            // truncation, in its low mantissa bits, exactly. (ConvertTo to int64 is some fifteen
+            // operations on AVX2, which has no such conversion.)
+            const auto whole = hn::Add(hn::Floor(position), hn::Set(d, 4503599627370496.0));
+            const auto segment = hn::Sub(hn::BitCast(di, whole), hn::BitCast(di, hn::Set(d, 4503599627370496.0)));
+            const auto x_at = at(segment)(0);
+            const auto x_next = at(hn::Add(segment, one))(0);
             // Rounding at a knot may pick the neighbouring segment: step back into the right one.
             const auto back = hn::RebindMask(di, hn::Lt(v, x_at));
             const auto forward =
@@ -70,11 +77,11 @@ void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_
                 k = hn::Sub(k, hn::VecFromMask(di, hn::RebindMask(di, hn::Le(hn::Set(d, f.x[knot]), v))));
             k = hn::Min(k, segment_limit);
         }
-        k = hn::Max(k, hn::Zero(di));
-        const auto s = hn::Mul(hn::Sub(v, read(0, k)), read(1, k));
-        const auto inner = hn::Add(read(4, k), hn::Mul(s, read(5, k)));
-        const auto middle = hn::Add(read(3, k), hn::Mul(s, inner));
-        auto value = hn::Add(read(2, k), hn::Mul(s, middle));
+        const auto read = at(hn::Max(k, hn::Zero(di)));
+        const auto s = hn::Mul(hn::Sub(v, read(0)), read(1));
+        const auto inner = hn::Add(read(4), hn::Mul(s, read(5)));
+        const auto middle = hn::Add(read(3), hn::Mul(s, inner));
+        auto value = hn::Add(read(2), hn::Mul(s, middle));
         value = hn::IfThenElse(hn::Ge(v, x_back), y_back, value);
         value = hn::IfThenElse(hn::Le(v, x_front), y_front, value);
         hn::StoreU(value, d, out + i);
@@ -99,20 +106,40 @@ void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_
     }
 }
 
+/// EvalCubicWith reading the six arrays as SmallTables of `Vectors` vectors (the x array's
+/// count: the others are one entry shorter, their extra vector zero and never selected).
+template <std::size_t Vectors, class D>
+void EvalCubicFromTables(D d, const CubicTable& f, const small_table::HWY_NAMESPACE::SmallTable<D> (&tables)[6],
+                         const double* t, double* out, std::size_t count)
+{
+    using Located = small_table::HWY_NAMESPACE::SmallTableIndex<D, Vectors>;
+    EvalCubicWith(f, t, out, count, [&](hn::Vec<hn::RebindToSigned<D>> index) {
+        return [&tables, d, where = Located(d, index)](int array) { return tables[array](d, where); };
+    });
+}
+
 void EvalCubic(const CubicTable& f, const double* t, double* out, std::size_t count)
 {
     // Arrays by number: x, inverse_width, y, c1, c2, c3.
-    const hn::ScalableTag<double> d;
+    using D = hn::ScalableTag<double>;
+    const D d;
     const double* arrays[6] = {f.x, f.inverse_width, f.y, f.c1, f.c2, f.c3};
     const std::size_t sizes[6] = {f.knots, f.knots - 1, f.knots, f.knots - 1, f.knots - 1, f.knots - 1};
-    if (SmallTable<decltype(d)>::fits(d, f.knots)) {
-        const SmallTable<decltype(d)> tables[6] = {{d, arrays[0], sizes[0]}, {d, arrays[1], sizes[1]},
+    if (SmallTable<D>::fits(d, f.knots)) {
+        const SmallTable<D> tables[6] = {{d, arrays[0], sizes[0]}, {d, arrays[1], sizes[1]},
                                                    {d, arrays[2], sizes[2]}, {d, arrays[3], sizes[3]},
                                                    {d, arrays[4], sizes[4]}, {d, arrays[5], sizes[5]}};
-        EvalCubicWith(f, t, out, count, [&](int array, auto index) { return tables[array](d, index); });
-    } else {
-        EvalCubicWith(f, t, out, count, [&](int array, auto index) { return hn::GatherIndex(d, arrays[array], index); });
+        // The vector count as a constant: no per-read loop or branch over it.
+        switch (tables[0].vectors()) {
+            case 1: return EvalCubicFromTables<1>(d, f, tables, t, out, count);
+            case 2: return EvalCubicFromTables<2>(d, f, tables, t, out, count);
+            case 3: return EvalCubicFromTables<3>(d, f, tables, t, out, count);
+            default: return EvalCubicFromTables<4>(d, f, tables, t, out, count);
+        }
     }
+    EvalCubicWith(f, t, out, count, [&](hn::Vec<hn::RebindToSigned<D>> index) {
+        return [&arrays, d, index](int array) { return hn::GatherIndex(d, arrays[array], index); };
+    });
 }
 
 /// z[i] = gain · kept[i] / sigma.

@@ -66,6 +66,34 @@ void LoadTable(D d, const hn::TFromD<D>* values, std::size_t count, std::size_t 
     }
 }
 
+/// Where each lane's entry lies in a table of `Vectors` vectors of D's lanes: its lane in a
+/// vector and, for each vector v ≥ 1, whether the entry is in v or past it. It depends on the
+/// index alone, so reads of several tables at the same entries (a monotone cubic's six knot
+/// arrays) locate once and pay only their permutations and blends.
+template <class D, std::size_t Vectors>
+struct SmallTableIndex {
+    static_assert(Vectors >= 1 && Vectors <= 4, "a SmallTable holds 1 to 4 vectors");
+    using Index = hn::Vec<hn::RebindToSigned<D>>;
+    Index index;
+    decltype(hn::IndicesFromVec(D(), Index())) lane;
+    hn::Mask<D> past[Vectors > 1 ? Vectors - 1 : 1];  // past[v − 1]: index ≥ v · lanes
+
+    SmallTableIndex(D d, Index entry) : index(entry), lane(hn::IndicesFromVec(d, hn::And(entry, LaneMask(d))))
+    {
+        const hn::RebindToSigned<D> di;
+        using TI = hn::TFromD<decltype(di)>;
+        for (std::size_t v = 1; v < Vectors; ++v)
+            past[v - 1] = hn::RebindMask(d, hn::Gt(entry, hn::Set(di, TI(TI(v) * TI(hn::Lanes(d)) - 1))));
+    }
+
+private:
+    static Index LaneMask(D d)
+    {
+        using TI = hn::TFromD<hn::RebindToSigned<D>>;
+        return hn::Set(hn::RebindToSigned<D>(), TI(TI(hn::Lanes(d)) - 1));
+    }
+};
+
 /// A table of up to 4 vectors of D's lanes; operator() reads entry index[i] into lane i
 /// (indices in [0, count): the caller's). Where the target has a two-table permutation
 /// (AVX-512) it reads a pair of vectors at a time; elsewhere a permutation per vector and a
@@ -82,24 +110,29 @@ public:
         LoadTable(d, values, count, readable, table_, max_vectors);
     }
     static bool fits(D d, std::size_t count) { return count <= max_vectors * hn::Lanes(d); }
+    /// The vectors holding the table's entries (the rest are zero: a read with a larger
+    /// SmallTableIndex gives the same values).
+    std::size_t vectors() const { return vectors_; }
     hn::Vec<D> operator()(D d, hn::Vec<hn::RebindToSigned<D>> index) const
     {
-        const hn::RebindToSigned<D> di;
-        using TI = hn::TFromD<decltype(di)>;
-        const TI lanes = TI(hn::Lanes(d));
+        switch (vectors_) {
+            case 1: return (*this)(d, SmallTableIndex<D, 1>(d, index));
+            case 2: return (*this)(d, SmallTableIndex<D, 2>(d, index));
+            case 3: return (*this)(d, SmallTableIndex<D, 3>(d, index));
+            default: return (*this)(d, SmallTableIndex<D, 4>(d, index));
+        }
+    }
+    template <std::size_t Vectors>
+    hn::Vec<D> operator()(D d, const SmallTableIndex<D, Vectors>& at) const
+    {
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
-        auto value = TwoTablesLookup(d, table_[0], table_[1], index);
-        if (vectors_ > 2)
-            value = hn::IfThenElse(hn::RebindMask(d, hn::Gt(index, hn::Set(di, TI(2 * lanes - 1)))),
-                                   TwoTablesLookup(d, table_[2], table_[3], index), value);
+        auto value = TwoTablesLookup(d, table_[0], table_[1], at.index);
+        if constexpr (Vectors > 2) value = hn::IfThenElse(at.past[1], TwoTablesLookup(d, table_[2], table_[3], at.index), value);
         return value;
 #else
-        const auto lane = hn::IndicesFromVec(d, hn::And(index, hn::Set(di, TI(lanes - 1))));
-        auto value = hn::TableLookupLanes(table_[0], lane);
-        for (std::size_t v = 1; v < vectors_; ++v) {
-            const auto in_vector = hn::RebindMask(d, hn::Gt(index, hn::Set(di, TI(TI(v) * lanes - 1))));
-            value = hn::IfThenElse(in_vector, hn::TableLookupLanes(table_[v], lane), value);
-        }
+        (void)d;
+        auto value = hn::TableLookupLanes(table_[0], at.lane);
+        for (std::size_t v = 1; v < Vectors; ++v) value = hn::IfThenElse(at.past[v - 1], hn::TableLookupLanes(table_[v], at.lane), value);
         return value;
 #endif
     }
