@@ -80,8 +80,8 @@ class StochtexSettings(bpy.types.PropertyGroup):
     analysis_options: StringProperty(
         name="Options", default="",
         description="The model's analysis options as key=value pairs, e.g. filter-taps=1 (tiling: faster, "
-                    "less accurate filtering) or J=80 (lrp); empty: the defaults. Options lists each with its "
-                    "range and default (docs/blender.md)")
+                    "less accurate filtering) or J=80 (lrp); empty: the defaults. The list above the field shows "
+                    "each with its default and range (docs/blender.md)")
     show_analysis_options: BoolProperty(name="Analysis options (key=value)", default=False,
                                         description="List the chosen model's analysis options, each with its "
                                                     "range and default")

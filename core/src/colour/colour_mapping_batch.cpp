@@ -11,6 +11,7 @@
 #include "colour/colour_mapping.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
+#include "numerics/small_integers-inl.h"
 #include "numerics/small_table-inl.h"
 
 #include <algorithm>
@@ -32,6 +33,7 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::colour_batch::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+using small_integers::HWY_NAMESPACE::SmallToInt64;
 using small_table::HWY_NAMESPACE::SmallTable;  // the knot arrays are short
 
 /// out[i] = f(t[i]): MonotoneCubic::operator(), lane-wise. Lanes outside
@@ -58,11 +60,7 @@ void EvalCubicWith(const CubicTable& f, const double* t, double* out, std::size_
         if (f.uniform) {
             // size_t((t − x₀)·inverse_step), at most the last segment (min and truncation commute).
             const auto position = hn::Min(hn::Max(hn::Mul(hn::Sub(v, x_front), inverse_step), zero), top);
-            // position ∈ [0, knots): floor(position) + 2⁵² holds floor(position), which is its
-            // truncation, in its low mantissa bits, exactly. (ConvertTo to int64 is some fifteen
-            // operations on AVX2, which has no such conversion.)
-            const auto whole = hn::Add(hn::Floor(position), hn::Set(d, 4503599627370496.0));
-            const auto segment = hn::Sub(hn::BitCast(di, whole), hn::BitCast(di, hn::Set(d, 4503599627370496.0)));
+            const auto segment = SmallToInt64(d, position);  // position ∈ [0, knots)
             const auto x_at = at(segment)(0);
             const auto x_next = at(hn::Add(segment, one))(0);
             // Rounding at a knot may pick the neighbouring segment: step back into the right one.

@@ -7,6 +7,7 @@
 
 #include <hwy/highway.h>
 
+#include "numerics/small_integers-inl.h"
 #include "numerics/small_table-inl.h"
 
 #include <algorithm>
@@ -19,24 +20,9 @@ HWY_BEFORE_NAMESPACE();
 namespace stochtex::tiling_raster::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Small whole-number doubles (|v| < 2^31) as int32 and int64: DemoteTo (and PromoteTo), on
-/// AVX-512 one conversion each, without Highway's clamping (which changes no such lane).
-template <class DD>
-HWY_INLINE hn::Vec<hn::Rebind<std::int32_t, DD>> SmallWholeToInt32(DD, hn::Vec<DD> v)
-{
-#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
-    if constexpr (hn::MaxLanes(DD()) == 8) return hn::Vec<hn::Rebind<std::int32_t, DD>>{_mm512_cvttpd_epi32(v.raw)};
-#endif
-    return hn::DemoteTo(hn::Rebind<std::int32_t, DD>(), v);
-}
-template <class DD>
-HWY_INLINE hn::Vec<hn::RebindToSigned<DD>> SmallWholeToInt64(DD dd, hn::Vec<DD> v)
-{
-#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
-    if constexpr (hn::MaxLanes(DD()) == 8) return hn::Vec<hn::RebindToSigned<DD>>{_mm512_cvttpd_epi64(v.raw)};
-#endif
-    return hn::PromoteTo(hn::RebindToSigned<DD>(), SmallWholeToInt32(dd, v));
-}
+// Whole-number doubles (|v| < 2^31) as int32 and int64 lanes, cheaply.
+using small_integers::HWY_NAMESPACE::SmallToInt32;
+using small_integers::HWY_NAMESPACE::SmallToInt64;
 
 /// The size of a level's side (a power of two) as doubles and the mask size − 1.
 template <class DD>
@@ -71,7 +57,7 @@ HWY_INLINE Axis<DD> AxisAt(DD dd, hn::Vec<DD> p, hn::Vec<DD> scale, const Side<D
         return {fraction, hn::And(hn::BitCast(d32, hn::TruncateTo(hn::Rebind<std::uint32_t, DD>(), whole)), side.mask)};
     }
 #endif
-    return {fraction, SmallWholeToInt32(dd, hn::Sub(l0, hn::Mul(side.size, hn::Floor(hn::Mul(l0, side.inverse)))))};
+    return {fraction, SmallToInt32(dd, hn::Sub(l0, hn::Mul(side.size, hn::Floor(hn::Mul(l0, side.inverse)))))};
 }
 
 /// The y side of every vertex entry's lookups (TapRow): fy at vertex_fy + level · entries, the
@@ -189,7 +175,7 @@ void PlanTapRowWith(const TapRow& row, const TileReads& reads, const Tables& tab
         const hn::Vec<decltype(dd)> weights[3] = {hn::Mul(b0, inverse_norm), hn::Mul(b1, inverse_norm), hn::Mul(b2, inverse_norm)};
         // The tiles' vertex entries: column c = cx − i_min (exact: a small integer) and c + 1,
         // row j or j + 1; as int64 for the translations, as int32 for the other tables.
-        const auto c = SmallWholeToInt64(dd, hn::Sub(cx, i_min));
+        const auto c = SmallToInt64(dd, hn::Sub(cx, i_min));
         const auto below = hn::Add(c, columns);
         const hn::Vec<decltype(di)> entry[3] = {hn::IfThenElse(hn::RebindMask(di, upper), hn::Add(below, one_64), c), hn::Add(c, one_64),
                                                 below};
