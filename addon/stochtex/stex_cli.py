@@ -189,6 +189,7 @@ class StexJob:
     def _finish(self):
         self._stdout = self._process.stdout.read()
         self._reader.join()
+        self._close_pipes()
         if self._process.returncode != 0:
             raise StexError(error_message(self._stderr, self._process.returncode))
         return self._stdout
@@ -198,6 +199,14 @@ class StexJob:
             self._process.kill()
             self._process.wait()
         self._reader.join()
+        self._close_pipes()
+
+    def _close_pipes(self):
+        # Closed here, not when the garbage collector finds them: Blender runs stex once per
+        # step for a whole session, and each run would otherwise hold two descriptors open.
+        for pipe in (self._process.stdout, self._process.stderr):
+            if pipe is not None and not pipe.closed:
+                pipe.close()
 
 
 def error_message(stderr_lines, returncode):

@@ -123,6 +123,20 @@ class StexCliTest(unittest.TestCase):
         job.cancel()
         self.assertFalse(os.path.exists(out))
 
+    def test_finished_failed_and_cancelled_jobs_leave_no_descriptor_open(self):
+        def open_descriptors():
+            return len(os.listdir("/proc/self/fd"))
+        if not os.path.isdir("/proc/self/fd"):
+            self.skipTest("no /proc/self/fd")
+        before = open_descriptors()
+        for _ in range(3):
+            stex_cli.run(self.stex, ["info", self.texture])
+            with self.assertRaises(stex_cli.StexError):
+                stex_cli.run(self.stex, ["info", os.path.join(self.dir, "missing.stex")])
+            job = stex_cli.StexJob(self.stex, stex_cli.bake_args(self.texture, os.path.join(self.dir, "big.exr"), 8192))
+            job.cancel()
+        self.assertEqual(open_descriptors(), before)
+
     def test_tweaks_give_a_valid_texture(self):
         tweaked = stex_cli.apply_tweaks(self.text, seed=9, band_gains=[0.0, 2.0], histograms=False)
         data = json.loads(tweaked)
