@@ -2,6 +2,8 @@
 // MipImage's levels; the solid map evaluates the solid texture at a position map's points.
 #include "test_support.h"
 
+#include "models/model.h"
+
 #include <stochtex/analysis.h>
 #include <stochtex/bake.h>
 #include <stochtex/error.h>
@@ -12,8 +14,11 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace fs = std::filesystem;
 using namespace stochtex;
@@ -147,6 +152,111 @@ TEST(Bake, SolidMapBadInputsAreErrors)
     EXPECT_THROW(bake_solid_map(concrete(), dir + "/missing.exr", dir + "/out.exr", 1.0), Error);
     write_plane_positions(dir + "/p.exr", 8, 8, 0.01, 0);
     EXPECT_THROW(bake_solid_map(concrete(), dir + "/p.exr", dir + "/out.exr", 0.0), Error);
+}
+
+// A model whose texture fails at some positions: eval() throws for u ≥ fail_from_u, eval_solid()
+// for x ≥ fail_from_u (texture units). Registered in this program only, so that a bake's worker
+// throws part-way through, as a model's error (or a bad_alloc) would.
+struct FailingParameters {
+    double fail_from_u = 0.5;
+};
+
+class FailingTexture final : public Texture {
+public:
+    explicit FailingTexture(const TextureDescription& d) : Texture(d), fail_from_(d.parameters.get<FailingParameters>().fail_from_u) {}
+    FailingTexture(const TextureDescription& d, const Vec2&) : FailingTexture(d) {}
+    Rgb eval(const Vec2& uv, const Footprint2D&) const override { return at(uv[0]); }
+    Rgb eval_solid(const SurfacePoint& point) const override { return at(point.p[0]); }
+    Rgb mean() const override { return {0.5f, 0.5f, 0.5f}; }
+
+private:
+    Rgb at(double u) const
+    {
+        if (u >= fail_from_) throw Error("failing model: no value at u = " + std::to_string(u));
+        return mean();
+    }
+    double fail_from_;
+};
+
+ParameterSchema<FailingParameters> failing_schema()
+{
+    ParameterSchema<FailingParameters> s;
+    s.number("fail_from_u", &FailingParameters::fail_from_u, {-1e6, 1e6, ""}, {"0.5", "texture units", "where eval throws"});
+    return s;
+}
+
+class FailingModel final : public TextureModelOf<FailingParameters, FailingTexture> {
+public:
+    FailingModel() : TextureModelOf({"test_failing", "throws while evaluated, for the bake tests", "tests/bake_test.cpp", {}, {}, {}}, failing_schema()) {}
+    std::string describe(const TextureDescription&) const override { return "fails\n"; }
+    TextureDescription example() const override
+    {
+        TextureDescription d;
+        d.model = name();
+        d.pixels_per_unit = 64;
+        d.mean = {0.5, 0.5, 0.5};
+        d.parameters = FailingParameters{};
+        return d;
+    }
+};
+
+const FailingModel failing_model;
+const ModelRegistration failing_registration(failing_model);
+
+std::string file_bytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Whether `dir` holds only the files named (no temporary left behind).
+std::vector<std::string> files_in(const std::string& dir)
+{
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+TEST(Bake, AThrowingWorkerIsACleanErrorAndKeepsTheOldFile)
+{
+    const std::string dir = test::temp_dir("bake-worker-throws");
+    const std::string path = dir + "/t.exr";
+    BakeOptions options;
+    options.width = options.height = 256;
+    options.tile_size = 32;
+    options.threads = 4;
+    bake_mip_image(concrete(), path, options);  // the old output
+    const std::string old_bytes = file_bytes(path);
+    ASSERT_FALSE(old_bytes.empty());
+
+    // The period is 256 / 64 = 4 units wide: every strip of level 0 has tiles that fail (u ≥ 2.5)
+    // and tiles that do not, spread over 4 threads.
+    TextureDescription failing = failing_model.example();
+    failing.parameters = FailingParameters{2.5};
+    try {
+        bake_mip_image(failing, path, options);
+        FAIL() << "the bake did not fail";
+    } catch (const Error& e) {
+        // The usual error: the output file, then the model's message.
+        EXPECT_EQ(std::string(e.what()).rfind(path + ": failing model: no value at u = ", 0), 0u) << e.what();
+    }
+    EXPECT_EQ(file_bytes(path), old_bytes);
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"t.exr"});
+
+    // The solid bake: rows are the items; x ≥ 2.5 fails on every row.
+    write_plane_positions(dir + "/positions.exr", 64, 48, 0.0625, 0);
+    const std::string solid = dir + "/solid.exr";
+    bake_solid_map(concrete(), dir + "/positions.exr", solid, 1.0, 4);
+    const std::string old_solid = file_bytes(solid);
+    try {
+        bake_solid_map(failing, dir + "/positions.exr", solid, 1.0, 4);
+        FAIL() << "the solid bake did not fail";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("failing model: no value at u = ", 0), 0u) << e.what();
+    }
+    EXPECT_EQ(file_bytes(solid), old_solid);
+    EXPECT_EQ(files_in(dir), (std::vector<std::string>{"positions.exr", "solid.exr", "t.exr"}));
 }
 
 TEST(Bake, CliBakeAndOsl)

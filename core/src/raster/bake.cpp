@@ -5,41 +5,29 @@
 #include <stochtex/texture.h>
 
 #include "image/image_output.h"
-
+#include "parallel/parallel_for.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <memory>
-#include <thread>
 #include <vector>
 
 namespace stochtex {
 
 namespace {
 
-/// Fills one row of tiles (tile_height rows of the level, whole width) on `threads` workers,
-/// each taking tiles from a shared counter: the strip is the same whatever the thread count.
+/// Fills one row of tiles (tile_height rows of the level, whole width), a tile per item: each
+/// tile is its own region of the level, so the strip is the same whatever the thread count.
 void fill_strip(const MipImage& image, int level, int y0, int rows, int tile_width, int threads, float* strip)
 {
     const int width = image.level_width(level);
-    const int tiles = (width + tile_width - 1) / tile_width;
-    std::atomic<int> next{0};
-    auto work = [&] {
-        std::vector<float> tile(std::size_t(tile_width) * rows * 3);
-        for (int t; (t = next.fetch_add(1)) < tiles;) {
-            const int x0 = t * tile_width, w = std::min(tile_width, width - x0);
-            image.fill(level, x0, y0, w, rows, tile.data());
-            for (int y = 0; y < rows; ++y)
-                std::copy_n(&tile[std::size_t(y) * w * 3], std::size_t(w) * 3, strip + (std::size_t(y) * width + x0) * 3);
-        }
-    };
-    const int count = std::max(1, std::min(threads, tiles));
-    std::vector<std::thread> workers;
-    for (int i = 1; i < count; ++i) workers.emplace_back(work);
-    work();
-    for (auto& worker : workers) worker.join();
+    parallel_for((width + tile_width - 1) / tile_width, threads, [&](int t) {
+        const int x0 = t * tile_width, w = std::min(tile_width, width - x0);
+        std::vector<float> tile(std::size_t(w) * rows * 3);
+        image.fill(level, x0, y0, w, rows, tile.data());
+        for (int y = 0; y < rows; ++y)
+            std::copy_n(&tile[std::size_t(y) * w * 3], std::size_t(w) * 3, strip + (std::size_t(y) * width + x0) * 3);
+    });
 }
 
 }  // namespace
@@ -58,7 +46,7 @@ BakeSummary bake_mip_image(const TextureDescription& description, const std::str
     codec::ImageCodec& writer = image_writer(path, "the bake", true);
     check_output_path(path, "the bake");
 
-    const int threads = options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = thread_count(options.threads);
     double total_texels = 0;
     for (int level = 0; level < image.level_count(); ++level)
         total_texels += double(image.level_width(level)) * image.level_height(level);
@@ -151,7 +139,7 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
     const auto texture = make_texture(description);
     const PositionMap map = read_positions(positions_path);
     // Positions come from a file: each must lie where a texture can be evaluated (texture.h),
-    // checked here because the workers below cannot report an error.
+    // checked here, before any work, so the error names the texel.
     for (int y = 0; y < map.height; ++y)
         for (int x = 0; x < map.width; ++x)
             if (map.covered(x, y))
@@ -161,51 +149,29 @@ BakeSummary bake_solid_map(const TextureDescription& description, const std::str
                                        positions_path + ": texel (" + std::to_string(x) + ", " + std::to_string(y) +
                                            ") position × position scale");
     std::vector<float> out(map.rgba.size(), 0.0f);
-    const int workers = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    std::atomic<int> next_row{0}, rows_done{0};
-    auto work = [&] {
-        // A row's covered texels are one batch; their values land in a planar row buffer.
+    // A row's covered texels are one batch (an item); their values land in a planar row buffer.
+    parallel_for(map.height, threads, [&](int y) {
         std::vector<SurfacePoint> points;
         std::vector<int> columns;
-        std::vector<float> planes;
-        for (int y; (y = next_row.fetch_add(1)) < map.height;) {
-            points.clear(), columns.clear();
-            for (int x = 0; x < map.width; ++x) {
-                if (!map.covered(x, y)) continue;
-                const float* p = map.at(x, y);
-                SurfacePoint point;
-                point.p = {p[0] * units_per_position, p[1] * units_per_position, p[2] * units_per_position};
-                point.n = {0, 0, 0};  // the derivatives lie on the surface already
-                point.dpdx = derivative(map, x, y, 1, 0, units_per_position);
-                point.dpdy = derivative(map, x, y, 0, 1, units_per_position);
-                points.push_back(point);
-                columns.push_back(x);
-            }
-            const std::size_t n = points.size();
-            planes.resize(3 * n);
-            texture->eval_solid_points({points.data(), n}, RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n));
-            for (std::size_t k = 0; k < n; ++k) {
-                float* texel = &out[(std::size_t(y) * map.width + columns[k]) * 4];
-                texel[0] = planes[k], texel[1] = planes[n + k], texel[2] = planes[2 * n + k], texel[3] = 1.0f;
-            }
-            rows_done.fetch_add(1);
+        for (int x = 0; x < map.width; ++x) {
+            if (!map.covered(x, y)) continue;
+            const float* p = map.at(x, y);
+            SurfacePoint point;
+            point.p = {p[0] * units_per_position, p[1] * units_per_position, p[2] * units_per_position};
+            point.n = {0, 0, 0};  // the derivatives lie on the surface already
+            point.dpdx = derivative(map, x, y, 1, 0, units_per_position);
+            point.dpdy = derivative(map, x, y, 0, 1, units_per_position);
+            points.push_back(point);
+            columns.push_back(x);
         }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < std::min(workers, map.height); ++i) pool.emplace_back(work);
-    if (progress) {
-        // Progress from the calling thread only (progress.h), while it also works.
-        std::thread main_worker(work);
-        while (rows_done.load() < map.height) {
-            progress(double(rows_done.load()) / map.height, "solid bake");
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        const std::size_t n = points.size();
+        std::vector<float> planes(3 * n);
+        texture->eval_solid_points({points.data(), n}, RgbOutput::planar(planes.data(), planes.data() + n, planes.data() + 2 * n));
+        for (std::size_t k = 0; k < n; ++k) {
+            float* texel = &out[(std::size_t(y) * map.width + columns[k]) * 4];
+            texel[0] = planes[k], texel[1] = planes[n + k], texel[2] = planes[2 * n + k], texel[3] = 1.0f;
         }
-        main_worker.join();
-        progress(1.0, "solid bake");
-    } else {
-        work();
-    }
-    for (auto& worker : pool) worker.join();
+    }, {progress, "solid bake"});
 
     codec::ImageHeader header;
     header.width = map.width, header.height = map.height, header.channels = 4;

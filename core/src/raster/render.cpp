@@ -1,13 +1,9 @@
 #include <stochtex/error.h>
 #include <stochtex/render.h>
 
+#include "parallel/parallel_for.h"
+
 #include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 namespace stochtex {
 
@@ -59,49 +55,18 @@ Image render(const Texture& texture, const RenderSettings& settings, const Progr
                     " is too large for one image (at most 2^28 pixels); render it in tiles");
     Image image(settings.width, settings.height, 3);
 
-    // Workers take bands of rows from a shared counter; each pixel depends only on its own
-    // coordinates, so the image is bit-identical for any thread count and band height. Models
-    // share work along a band (lrp's window terms and tables, gabor's cell caches, tiling's
-    // shift tables), so taller bands redo less of it (lrp: 16 % less CPU at 64 rows than at 8);
-    // four bands per worker at least keep the load balanced.
-    const int wanted_threads =
-        settings.threads > 0 ? settings.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const int rows_per_chunk = std::clamp(settings.height / (4 * wanted_threads), 8, 64);
-    const int chunk_count = (settings.height + rows_per_chunk - 1) / rows_per_chunk;
-    const int threads = std::max(1, std::min(chunk_count, wanted_threads));
-    std::atomic<int> next_chunk{0}, done_chunks{0};
-    std::exception_ptr failure;
-    std::mutex mutex;
-    std::condition_variable finished;
-    auto work = [&] {
-        try {
-            for (int chunk; (chunk = next_chunk.fetch_add(1)) < chunk_count;) {
-                const int y0 = chunk * rows_per_chunk;
-                const int rows = std::min(rows_per_chunk, settings.height - y0);
-                render_region(texture, settings, 0, y0, settings.width, rows,
-                              &image.pixels[std::size_t(y0) * settings.width * 3]);
-                done_chunks.fetch_add(1);
-            }
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!failure) failure = std::current_exception();
-            next_chunk = chunk_count;
-        }
-        finished.notify_all();
-    };
-    std::vector<std::thread> workers;
-    for (int t = 0; t < threads; ++t) workers.emplace_back(work);
-    if (progress) {
-        // Progress is reported from this thread only, so callbacks need no locking.
-        std::unique_lock<std::mutex> lock(mutex);
-        while (done_chunks.load() < chunk_count && !failure) {
-            progress(double(done_chunks.load()) / chunk_count, "render");
-            finished.wait_for(lock, std::chrono::milliseconds(100));
-        }
-    }
-    for (auto& worker : workers) worker.join();
-    if (failure) std::rethrow_exception(failure);
-    if (progress) progress(1.0, "render");
+    // Items are bands of rows; each pixel depends only on its own coordinates, so the image is
+    // bit-identical for any thread count and band height. Models share work along a band (lrp's
+    // window terms and tables, gabor's cell caches, tiling's shift tables), so taller bands
+    // redo less of it (lrp: 16 % less CPU at 64 rows than at 8); four bands per thread at least
+    // keep the load balanced.
+    const int rows_per_band = std::clamp(settings.height / (4 * thread_count(settings.threads)), 8, 64);
+    const int bands = (settings.height + rows_per_band - 1) / rows_per_band;
+    parallel_for(bands, settings.threads, [&](int band) {
+        const int y0 = band * rows_per_band;
+        render_region(texture, settings, 0, y0, settings.width, std::min(rows_per_band, settings.height - y0),
+                      &image.pixels[std::size_t(y0) * settings.width * 3]);
+    }, {progress, "render"});
     return image;
 }
 

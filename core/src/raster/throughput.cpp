@@ -6,17 +6,14 @@
 #include <stochtex/throughput.h>
 
 #include "image/image_codec.h"
+#include "parallel/parallel_for.h"
 #include "stex/parameter_schema.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <exception>
 #include <functional>
-#include <mutex>
-#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -25,30 +22,6 @@ namespace stochtex {
 namespace {
 
 namespace fs = std::filesystem;
-
-int thread_count(int requested) { return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency())); }
-
-/// Runs work(index) for index in [0, count) on `threads` threads taking indices from a counter;
-/// the first exception stops the others and is rethrown here.
-void run_parallel(int threads, int count, const std::function<void(int)>& work)
-{
-    std::atomic<int> next{0};
-    std::exception_ptr failure;
-    std::mutex mutex;
-    std::vector<std::thread> workers;
-    for (int t = 0; t < std::min(threads, count); ++t)
-        workers.emplace_back([&] {
-            try {
-                for (int index; (index = next.fetch_add(1)) < count;) work(index);
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(mutex);
-                if (!failure) failure = std::current_exception();
-                next = count;
-            }
-        });
-    for (std::thread& worker : workers) worker.join();
-    if (failure) std::rethrow_exception(failure);
-}
 
 /// `repetitions` timings of run() (each returning its item count) → median, min, max rate.
 ThroughputResult timed(const std::string& route, const std::string& detail, int repetitions,
@@ -119,7 +92,7 @@ std::vector<ThroughputResult> measure_throughput(const TextureDescription& descr
                             "MipImage::fill (the OIIO plugin's tile path), level 0 in " + std::to_string(s.tile) + "² tiles, " +
                                 raster,
                             s.repetitions, [&] {
-                                run_parallel(threads, tiles, [&](int t) {
+                                parallel_for(tiles, threads, [&](int t) {
                                     std::vector<float> tile(std::size_t(s.tile) * s.tile * 3);
                                     const int x0 = t % tiles_x * s.tile, y0 = t / tiles_x * s.tile;
                                     image.fill(0, x0, y0, std::min(s.tile, s.size - x0), std::min(s.tile, s.size - y0),
