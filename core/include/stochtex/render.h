@@ -8,17 +8,14 @@
 namespace stochtex {
 
 /// A raster view of texture space: pixel (x, y) has its centre at
-///   u = origin_u + (x + 0.5) * units_per_pixel,  v = origin_v + (y + 0.5) * units_per_pixel_v
-/// (rows go down in v; units_per_pixel_v = 0 means square pixels). Solid renders evaluate the
-/// plane w = z with normal +w.
+///   u = origin_u + (x + 0.5) * units_per_pixel,  v = origin_v + (y + 0.5) * units_per_pixel
+/// (square pixels; rows go down in v). Solid renders evaluate the plane w = z with normal +w.
 struct RenderSettings {
     int width = 512;
     int height = 512;
     double origin_u = 0;
     double origin_v = 0;
     double units_per_pixel = 1.0 / 512;
-    /// Pixel height in texture units when pixels are not square (MIP levels of odd sizes); 0: square.
-    double units_per_pixel_v = 0;
     bool solid = false;
     double z = 0;
     /// true: each pixel is filtered with its own footprint (units_per_pixel square);

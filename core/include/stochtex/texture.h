@@ -90,8 +90,9 @@ public:
 
     /// eval() at every pixel of the region (item j·width + i is pixel (i, j)).
     virtual void eval_region(const RasterRegion& region, const RgbOutput& out) const;
-    /// eval() at each point of the batch.
-    virtual void eval_points(const PointBatch& points, const RgbOutput& out) const;
+    /// eval() at each point of the batch. Not an override point: no consumer has 2D points with
+    /// footprints of their own in bulk (the plugin's tiles and every raster are regions).
+    void eval_points(const PointBatch& points, const RgbOutput& out) const;
     /// eval_solid() at every pixel of the solid region (item j·width + i is pixel (i, j)).
     virtual void eval_solid_region(const SolidRegion& region, const RgbOutput& out) const;
     /// eval_solid() at each point of the batch.

@@ -61,4 +61,29 @@ const GaussHermite& GaussHermite::standard_normal()
     return rule;
 }
 
+const SmallGaussHermite& SmallGaussHermite::standard_normal(int count)
+{
+    static const std::array<SmallGaussHermite, 3> rules = [] {
+        // The positive nodes and, first, the centre's weight; the rule mirrors them.
+        const std::vector<double> nodes[3] = {
+            {1.7320508075688772},
+            {1.3556261799742659, 2.8569700138728056},
+            {1.1544053947399682, 2.366759410734541, 3.7504397177257425}};
+        const std::vector<double> weights[3] = {
+            {2.0 / 3, 1.0 / 6},
+            {8.0 / 15, 0.2220759220056126, 0.011257411327720691},
+            {16.0 / 35, 0.2401231786050127, 0.030757123967586498, 0.0005482688559722184}};
+        std::array<SmallGaussHermite, 3> result;
+        for (std::size_t r = 0; r < 3; ++r) {
+            SmallGaussHermite& rule = result[r];
+            const std::size_t half = nodes[r].size();
+            for (std::size_t k = half; k > 0; --k) rule.node.push_back(-nodes[r][k - 1]), rule.weight.push_back(weights[r][k]);
+            rule.node.push_back(0), rule.weight.push_back(weights[r][0]);
+            for (std::size_t k = 0; k < half; ++k) rule.node.push_back(nodes[r][k]), rule.weight.push_back(weights[r][k + 1]);
+        }
+        return result;
+    }();
+    return rules[std::size_t(std::clamp(count, 3, 7) - 3) / 2];
+}
+
 }  // namespace stochtex

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace stochtex {
 
@@ -19,6 +20,15 @@ struct GaussHermite {
     std::array<double, count> node;
     std::array<double, count> weight;
     static const GaussHermite& standard_normal();
+};
+
+/// The same expectation with 3, 5 or 7 nodes (`count` clamped to [3, 7], even counts rounded
+/// down), nodes ascending and symmetric about 0; exact for polynomials of degree < 2·nodes. The
+/// nodes and weights are tabulated: Golub–Welsch gives them only to a few ulps, not exactly
+/// symmetric, and the tiling colour-map filter's renders depend on every bit of them.
+struct SmallGaussHermite {
+    std::vector<double> node, weight;
+    static const SmallGaussHermite& standard_normal(int count);
 };
 
 }  // namespace stochtex

@@ -14,11 +14,11 @@ namespace {
 void check_raster_positions(const Texture& texture, const RenderSettings& settings)
 {
     const double ppu = texture.description().pixels_per_unit;
-    const double du = settings.units_per_pixel, dv = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : du;
+    const double d = settings.units_per_pixel;
     check_position(settings.origin_u, ppu, "render: origin_u");
     check_position(settings.origin_v, ppu, "render: origin_v");
-    check_position(settings.origin_u + settings.width * du, ppu, "render: the right edge, origin_u + width × units_per_pixel");
-    check_position(settings.origin_v + settings.height * dv, ppu, "render: the bottom edge, origin_v + height × units_per_pixel");
+    check_position(settings.origin_u + settings.width * d, ppu, "render: the right edge, origin_u + width × units_per_pixel");
+    check_position(settings.origin_v + settings.height * d, ppu, "render: the bottom edge, origin_v + height × units_per_pixel");
     if (settings.solid) check_position(settings.z, ppu, "render: z");
 }
 
@@ -29,8 +29,7 @@ void render_region(const Texture& texture, const RenderSettings& settings, int x
     check_raster_positions(texture, settings);
     RasterRegion region;
     region.origin_u = settings.origin_u, region.origin_v = settings.origin_v;
-    region.du = settings.units_per_pixel;
-    region.dv = settings.units_per_pixel_v > 0 ? settings.units_per_pixel_v : region.du;
+    region.du = region.dv = settings.units_per_pixel;
     region.x0 = x0, region.y0 = y0, region.width = w, region.height = h;
     // Filtered: each pixel's footprint is its spacing; unfiltered: point samples.
     region.footprint = settings.filter ? Footprint2D{region.du, 0, 0, region.dv} : Footprint2D::point();
@@ -46,7 +45,7 @@ Image render(const Texture& texture, const RenderSettings& settings, const Progr
     if (settings.width <= 0 || settings.height <= 0)
         throw Error("render: size must be positive, got " + std::to_string(settings.width) + "x" +
                     std::to_string(settings.height));
-    if (!(settings.units_per_pixel > 0) || !(settings.units_per_pixel_v >= 0))
+    if (!(settings.units_per_pixel > 0))
         throw Error("render: units per pixel must be positive");
     check_raster_positions(texture, settings);
     // A whole-image render holds 12 bytes per pixel; beyond 2^28 pixels (3 GiB) use tiles.

@@ -215,24 +215,6 @@ public:
             });
     }
 
-    /// An object or null (absent).
-    template <class Sub>
-    ParameterSchema& nullable_object(const char* key, std::optional<Sub> Struct::*member, const ParameterSchema<Sub>& sub,
-                                     FieldDoc doc)
-    {
-        ParameterInfo info = make_info(key, "object | null", "", doc);
-        info.fields = sub.infos();
-        return custom(
-            info,
-            [member, sub](const Field& f, Struct& s, const ReadContext& context) {
-                if (!f.is_null()) s.*member = sub.read(f, context);
-            },
-            [member, sub](const Struct& s) { return (s.*member) ? sub.write(*(s.*member)) : Json(); },
-            [member, sub](const Struct& s, const std::string& path, const std::string& source) {
-                if (s.*member) sub.validate(*(s.*member), path, source);
-            });
-    }
-
     /// A list of objects, each described by `sub`; `extra` checks the count.
     template <class Sub>
     ParameterSchema& list(const char* key, std::vector<Sub> Struct::*member, const ParameterSchema<Sub>& sub, FieldDoc doc,

@@ -24,11 +24,9 @@ struct TilingSourceOptions {
     int filter_taps = TilingParameters::default_filter_taps;  ///< stored as TilingParameters::filter_taps
 };
 
-/// Colour map names for the options below: green, rgb, phasor-sine, phasor-square, phasor-sawtooth.
-const std::vector<std::string>& tiling_colour_map_names();
-
 /// Two noise photos (their luminance, made periodic, mapped to [0, 1] by mean ± 3σ) index the
-/// named colour map (256²). Throws Error for unusable inputs or an unknown map.
+/// named colour map (256²: "green", "rgb" or a phasor profile map below). Throws Error for
+/// unusable inputs or an unknown map (the error lists the names).
 TextureDescription colour_mapped_texture(const Image& noise_a, const Image& noise_b, const std::string& colour_map,
                                          const TilingSourceOptions& options);
 

@@ -1,5 +1,6 @@
 #include "models/tiling/colour_map_filter.h"
 
+#include "colour/gaussian.h"
 #include "models/tiling/colour_map_diagonal_blur.h"
 #include "models/tiling/colour_map_kernels.h"
 
@@ -78,27 +79,17 @@ LineRule equal_weight_rule(int count)
     return rule;
 }
 
-/// Gauss–Hermite (probabilists') with 3, 5 or 7 nodes: exact for polynomials up to degree
+/// Gauss–Hermite (colour/gaussian.h) with 3, 5 or 7 nodes: exact for polynomials up to degree
 /// 2n − 1. Used where the uniform rule would have that few nodes — a line shorter than about
 /// the blur the table already has along it, so the integrand is smooth on the line's scale —
 /// where uniform nodes over ±4σ would all but miss the line's variance (3 nodes: ±4σ, weight
 /// e⁻⁸ each).
 LineRule gauss_hermite_rule(int count)
 {
-    static const std::vector<double> nodes[3] = {
-        {1.7320508075688772},
-        {1.3556261799742659, 2.8569700138728056},
-        {1.1544053947399682, 2.366759410734541, 3.7504397177257425}};
-    static const std::vector<double> weights[3] = {
-        {2.0 / 3, 1.0 / 6},
-        {8.0 / 15, 0.2220759220056126, 0.011257411327720691},
-        {16.0 / 35, 0.2401231786050127, 0.030757123967586498, 0.0005482688559722184}};
-    const std::size_t r = std::size_t(std::clamp(count, 3, 7) - 3) / 2;
+    const SmallGaussHermite& gauss_hermite = SmallGaussHermite::standard_normal(count);
     LineRule rule;
-    const std::size_t half = nodes[r].size();
-    for (std::size_t k = half; k > 0; --k) rule.node.push_back(-nodes[r][k - 1]), rule.weight.push_back(weights[r][k]);
-    rule.node.push_back(0), rule.weight.push_back(weights[r][0]);
-    for (std::size_t k = 0; k < half; ++k) rule.node.push_back(nodes[r][k]), rule.weight.push_back(weights[r][k + 1]);
+    rule.node = gauss_hermite.node;
+    rule.weight = gauss_hermite.weight;
     rule.pad();
     return rule;
 }

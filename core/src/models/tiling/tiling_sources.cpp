@@ -96,8 +96,6 @@ TilingParameters colour_mapped_parameters(std::vector<std::vector<float>> noises
 
 }  // namespace
 
-const std::vector<std::string>& tiling_colour_map_names() { return colour_map_names(); }
-
 TextureDescription colour_mapped_texture(const Image& noise_a, const Image& noise_b, const std::string& colour_map,
                                          const TilingSourceOptions& options)
 {
