@@ -129,7 +129,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     std::mutex progress_mutex;
     std::size_t finished = 0;
     if (progress) progress(0.0, "fitting every model");
-    const ComparisonReference photo_side(photo);  // one photo, every candidate scored against it
+    const ComparisonReference photo_side(photo, /*with_structure=*/false);  // one photo, every candidate scored against it
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         Candidate& candidate = candidates[i];
         const Model& model = *candidate.model;
