@@ -107,6 +107,7 @@ int AnalyzeCommand::run() const
     options.histogram = histogram_mode_from_string(histogram);
     options.joint_colour = joint_colour == "on";
     options.try_joint_colour = joint_colour == "auto";  // with --model auto; a named model: off
+    options.structure_in_choice = choice_structure;
     options.histogram_knots = knots;
     options.max_bands = bands;
     // Only what the user gave: the model checks it (and names options it does not have).

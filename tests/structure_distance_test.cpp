@@ -16,6 +16,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <limits>
 
 namespace stochtex {
 namespace {
@@ -153,6 +154,23 @@ TEST(StructureDistance, ZeroForTheSameImageAndNanWhenTooSmallOrFlat) {
     EXPECT_FALSE(structure_statistics(flat).measurable);
     EXPECT_TRUE(std::isnan(StructureReference(photo).distance_to(flat).total));
     EXPECT_NE(format_report(compare_images(small, small)).find("structure distance"), std::string::npos);
+}
+
+TEST(StructureDistance, IsTheSeventhPenaltyTermOnlyWithATarget) {
+    ComparisonReport report;
+    FidelityTargets targets;
+    report.log_psd_db = {targets.radial_log_psd_db, targets.radial_log_psd_db, targets.radial_log_psd_db};
+    report.polar_log_psd_db = targets.polar_log_psd_db;
+    report.w1_relative = {targets.w1_sigma, 0.0, 0.0};
+    report.false_colour_rate = targets.false_colour_rate;
+    report.gradient_orientation_degrees = targets.gradient_orientation_degrees;
+    report.gradient_magnitude_w1 = targets.gradient_magnitude_w1;
+    report.structure.total = 0.75;
+    EXPECT_DOUBLE_EQ(fidelity_penalty(report, targets), 1.0);  // default: six terms, structure ignored
+    targets.structure_distance = 0.25;
+    EXPECT_DOUBLE_EQ(fidelity_penalty(report, targets), (6.0 + 3.0) / 7.0);
+    report.structure.total = std::numeric_limits<double>::quiet_NaN();  // not measurable: capped
+    EXPECT_DOUBLE_EQ(fidelity_penalty(report, targets), (6.0 + 10.0) / 7.0);
 }
 
 TEST(SteerablePyramid, AnOrientedWaveLandsInItsBandAndScale) {

@@ -692,6 +692,8 @@ double fidelity_penalty(const ComparisonReport& report, const FidelityTargets& t
                             term(report.gradient_magnitude_w1, targets.gradient_magnitude_w1)};
     double sum = 0;
     for (double t : terms) sum += t;
+    if (targets.structure_distance > 0)
+        return (sum + term(report.structure.total, targets.structure_distance)) / (std::size(terms) + 1);
     return sum / std::size(terms);
 }
 
