@@ -19,6 +19,7 @@ struct AnalyzeCommand {
     std::string photo, output;
     std::string model = stochtex::automatic_model, colour = "pca", histogram = "auto";
     std::string joint_colour = "auto";
+    bool choice_structure = false;  // --choice-structure
     std::string colour_space;  // empty: what the file says, else sRGB
     int knots = 10;
     int bands = 0;

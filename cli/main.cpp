@@ -75,6 +75,9 @@ int main(int argc, char** argv)
                   "procedural mode needs (stex pov bakes a joint-colour texture); auto: with --model auto each of "
                   "those models is fitted both ways and the scores decide, a named model is fitted without")
         ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
+    a->add_flag("--choice-structure", analyze.choice_structure,
+                "With --model auto: score the candidates also by the structure distance (a seventh term of the "
+                "fidelity penalty, target 0.25; docs/metrics.md, Structure). Off by default: it can change the choice");
     a->add_option("--knots", analyze.knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
     a->add_option("--bands", analyze.bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();

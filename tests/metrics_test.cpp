@@ -226,8 +226,9 @@ TEST(CompareImages, FormatReportHasEveryRow) {
     for (const char* row : {"mean ref", "mean test", "stddev ref", "stddev test", "W1", "W1/sigma", "log-PSD dB",
                             "covariance error"})
         EXPECT_NE(text.find(row), std::string::npos) << row << " missing from\n" << text;
-    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 9 + 4);  // + the four rows below
-    for (const char* row : {"2D log-PSD distance", "gradient orientation W1", "gradient magnitude W1", "false-colour rate"})
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 9 + 4 + 2);  // + the four rows below, + structure and its parts
+    for (const char* row : {"2D log-PSD distance", "gradient orientation W1", "gradient magnitude W1", "false-colour rate",
+                            "structure distance", "cross-orientation"})
         EXPECT_NE(text.find(row), std::string::npos) << row << " missing from\n" << text;
 }
 

@@ -43,6 +43,10 @@ struct AnalysisOptions {
     /// (pca colour), so that the scores decide — for when the user did not choose
     /// (`stex analyze --joint-colour auto`, its default). Overrides joint_colour for those models.
     bool try_joint_colour = false;
+    /// automatic_model only: score the candidates with the structure distance as a seventh term
+    /// of the fidelity penalty (FidelityTargets::structure_distance = 0.25; docs/metrics.md,
+    /// "Structure"). Off by default: it changes the choice on some photos and costs ~60 % more time.
+    bool structure_in_choice = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
     int max_bands = 0;              ///< keep at most this many (finest) bands; 0 = all the photo supports

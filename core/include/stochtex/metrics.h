@@ -128,6 +128,26 @@ std::array<std::array<double, 3>, 3> colour_covariance(const Image& rgb);
 /// ‖cov(test) − cov(reference)‖_F / ‖cov(reference)‖_F.
 double covariance_relative_error(const Image& reference, const Image& test);
 
+/// How far a synthesis's structure is from its photo's: Portilla–Simoncelli statistics of a
+/// complex steerable pyramid (4 scales × 4 orientations) of luma, plus the colour channels'
+/// marginals, in five groups (docs/metrics.md, "Structure"). Each part is the RMS difference of
+/// its group's statistics divided by the same for the photo against its own random-phase
+/// version (same spectrum, no structure): 0 is the photo's structure, 1 is as structureless as
+/// the photo's noise. total is the mean of the parts. NaN where the images are too small
+/// (either side under 64 pixels) or flat.
+struct StructureDistance {
+    static constexpr int kParts = 5;
+    /// Short names of the parts, in order: "marginals" (skewness and kurtosis of luma, of its
+    /// low-pass levels and of R, G, B; the bands' amplitude sparsity), "auto-correlation" (of the
+    /// low-pass levels and of the band amplitudes, 7×7 lags), "cross-orientation" (amplitude
+    /// correlations between the orientations of a scale), "cross-scale" (amplitude correlations
+    /// between a band and the next coarser scale's), "phase" (a band against the next coarser
+    /// scale's phase-doubled band: edges and lines align across scales, noise does not).
+    static const char* part_name(int part);
+    double total = 0;
+    std::array<double, kParts> parts{};
+};
+
 /// Everything `stex compare` prints, per RGB channel where it applies.
 struct ComparisonReport {
     std::array<double, 3> mean_reference{}, mean_test{};
@@ -143,6 +163,7 @@ struct ComparisonReport {
     double gradient_orientation_degrees = 0; ///< circular W1 of the |∇|-weighted orientation histograms
     double gradient_magnitude_w1 = 0;        ///< W1 of |∇|/σ, relative to the reference's mean |∇|/σ
     double false_colour_rate = 0;            ///< false_colour_rate(reference, test), a fraction
+    StructureDistance structure;             ///< Portilla–Simoncelli statistics, luma and colour marginals
     /// centred_spectrum of luma for plots, side ≤ 256 (min of it and the images' sides).
     CentredSpectrum spectrum_reference_luma, spectrum_test_luma;
 };
@@ -154,8 +175,10 @@ ComparisonReport compare_images(const Image& reference, const Image& test);
 /// bit for bit. Cheap to copy; immutable, so it may be shared between threads.
 class ComparisonReference {
 public:
-    /// Throws Error unless `reference` is a non-empty RGB image.
-    explicit ComparisonReference(const Image& reference);
+    /// Throws Error unless `reference` is a non-empty RGB image. Without `with_structure` the
+    /// reports' structure distance is NaN: the model choice, whose penalty does not use it, skips
+    /// its cost (two steerable pyramids of the photo, one per candidate: ~60 % of the choice's).
+    explicit ComparisonReference(const Image& reference, bool with_structure = true);
     int width() const;
     int height() const;
 
@@ -175,10 +198,14 @@ struct FidelityTargets {
     double false_colour_rate = 0.01;           ///< a fraction
     double gradient_orientation_degrees = 5;   ///< gradient_orientation_degrees
     double gradient_magnitude_w1 = 0.10;       ///< gradient_magnitude_w1
+    /// structure.total, the seventh term: 0 (the default) leaves it out. 0.25 where it is used
+    /// (`stex analyze --choice-structure`): between two crops of one photo (≤ 0.19 at 256²,
+    /// ≈ 0.04 at 512²) and a Σw² = 1 blend of two crops, tiling's ghosts (0.31–0.37).
+    double structure_distance = 0;
 };
 
 /// One number for "how far is this synthesis from its photo": the mean over the six metrics of
-/// FidelityTargets of metric / target (1: every metric on its target; lower is closer). A mean,
+/// FidelityTargets (seven with a structure_distance target) of metric / target (1: every metric on its target; lower is closer). A mean,
 /// not a maximum, so a model that fails one target by a little and meets the rest well beats one
 /// that fails several; each term is capped at 10 so one unmeasurable or extreme metric cannot
 /// hide the others. A metric that could not be measured (NaN: images too small) counts 10.

@@ -154,7 +154,7 @@ TextureDescription analyze_one_model(const Image& photo, const AnalysisOptions& 
     std::once_flag photo_side_made;
     std::optional<ComparisonReference> photo_side;
     const auto score = [&](const ModelParameters& parameters, int max_side) {
-        if (!prepared_photo) std::call_once(photo_side_made, [&] { photo_side.emplace(photo); });
+        if (!prepared_photo) std::call_once(photo_side_made, [&] { photo_side.emplace(photo, /*with_structure=*/false); });
         TextureDescription candidate = description;
         candidate.parameters = parameters;
         return score_against_photo(candidate, prepared_photo ? *prepared_photo : *photo_side, max_side);

@@ -3,6 +3,7 @@
 
 #include <stochtex/error.h>
 
+#include "analysis/structure_statistics.h"
 #include "spectra/fft.h"
 
 #include <algorithm>
@@ -572,13 +573,14 @@ struct ComparisonReference::Prepared {
     std::vector<double> orientation, sorted_magnitude;
     double mean_magnitude = 0;
     std::vector<char> held_chroma;
+    std::shared_ptr<const StructureReference> structure;
 };
 
 namespace {
 constexpr int kBinsPerOctave = 4, kAngleBins = 12, kMinSamples = 128, kPlotSize = 256;
 }  // namespace
 
-ComparisonReference::ComparisonReference(const Image& reference) {
+ComparisonReference::ComparisonReference(const Image& reference, bool with_structure) {
     require_rgb(reference, "compare_images: reference");
     auto prepared = std::make_shared<Prepared>();
     Prepared& p = *prepared;
@@ -612,6 +614,7 @@ ComparisonReference::ComparisonReference(const Image& reference) {
         }
     }
     p.held_chroma = held_chroma_region(reference);
+    if (with_structure) p.structure = std::make_shared<const StructureReference>(reference);
     prepared_ = std::move(prepared);
 }
 
@@ -669,6 +672,8 @@ ComparisonReport compare_images(const ComparisonReference& prepared_reference, c
         report.gradient_orientation_degrees = report.gradient_magnitude_w1 = std::numeric_limits<double>::quiet_NaN();
     }
     report.false_colour_rate = outside_region_rate(reference.held_chroma, test);
+    if (reference.structure) report.structure = reference.structure->distance_to(test);
+    else report.structure.total = std::numeric_limits<double>::quiet_NaN(), report.structure.parts.fill(report.structure.total);
     return report;
 }
 
@@ -687,6 +692,8 @@ double fidelity_penalty(const ComparisonReport& report, const FidelityTargets& t
                             term(report.gradient_magnitude_w1, targets.gradient_magnitude_w1)};
     double sum = 0;
     for (double t : terms) sum += t;
+    if (targets.structure_distance > 0)
+        return (sum + term(report.structure.total, targets.structure_distance)) / (std::size(terms) + 1);
     return sum / std::size(terms);
 }
 
@@ -730,6 +737,11 @@ std::string format_report(const ComparisonReport& report) {
             value(report.gradient_magnitude_w1, "%.3g") + "\n";
     text += "false-colour rate (test chroma outside the reference's 99.5% a*b* region): " +
             value(100.0 * report.false_colour_rate, "%.3g") + " %\n";
+    text += "structure distance (Portilla-Simoncelli statistics; 0 = the photo's, 1 = its random-phase noise's): " +
+            value(report.structure.total, "%.3g") + "\n ";
+    for (int part = 0; part < StructureDistance::kParts; ++part)
+        text += std::string(" ") + StructureDistance::part_name(part) + " " + value(report.structure.parts[part], "%.3g");
+    text += "\n";
     return text;
 }
 

@@ -50,7 +50,8 @@ AnalysisOptions options_for(const Model& model, ColourMode colour_mode, bool joi
 
 }  // namespace
 
-ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side)
+ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side,
+                               const FidelityTargets& targets)
 {
     RenderSettings settings;
     settings.width = std::min(photo.width(), max_side);
@@ -63,7 +64,7 @@ ModelScore score_against_photo(const TextureDescription& description, const Comp
     score.model = description.model;
     score.colour = to_string(description.colour_mode);
     score.joint_colour = description.chroma_given_brightness.enabled();
-    score.penalty = fidelity_penalty(report);
+    score.penalty = fidelity_penalty(report, targets);
     score.radial_log_psd_db = (report.log_psd_db[0] + report.log_psd_db[1] + report.log_psd_db[2]) / 3;
     score.polar_log_psd_db = report.polar_log_psd_db;
     score.w1_sigma = std::max({report.w1_relative[0], report.w1_relative[1], report.w1_relative[2]});
@@ -129,7 +130,10 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     std::mutex progress_mutex;
     std::size_t finished = 0;
     if (progress) progress(0.0, "fitting every model");
-    const ComparisonReference photo_side(photo);  // one photo, every candidate scored against it
+    // One photo, every candidate scored against it; the structure distance only where it scores.
+    const ComparisonReference photo_side(photo, options.structure_in_choice);
+    FidelityTargets targets;
+    if (options.structure_in_choice) targets.structure_distance = 0.25;
     tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t i) {
         Candidate& candidate = candidates[i];
         const Model& model = *candidate.model;
@@ -138,7 +142,7 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         try {
             candidate.description = analyze_one_model(
                 photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options), nullptr, &photo_side);
-            candidate.score = score_against_photo(candidate.description, photo_side, max_scoring_side);
+            candidate.score = score_against_photo(candidate.description, photo_side, max_scoring_side, targets);
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
         }

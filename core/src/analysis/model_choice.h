@@ -19,7 +19,8 @@ constexpr int max_scoring_side = 384;
 /// A fitted description's score as the choice measures it: its render (at the photo's pixel
 /// scale, at most max_side² pixels from the texture's origin, on one thread) against the whole
 /// photo. Also what a model's fit uses to choose among its own candidates (FitInput::score).
-ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side);
+ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side,
+                               const FidelityTargets& targets = {});
 
 /// The rule: the index of the score to keep of `scores` (not empty), the lowest penalty or,
 /// among those within model_choice_tolerance of it (differences the metrics' own noise makes),

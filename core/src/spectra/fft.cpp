@@ -99,4 +99,24 @@ std::vector<float> real_inverse_fft_2d(const std::vector<std::complex<float>>& h
     return plane;
 }
 
+void complex_fft_2d(std::vector<std::complex<float>>& data, int width, int height, bool inverse)
+{
+    if (width <= 0 || height <= 0 || data.size() != std::size_t(width) * height)
+        throw Error("complex_fft_2d: array size does not match " + std::to_string(width) + "x" + std::to_string(height));
+    fftwf_complex* buffer = fftwf_alloc_complex(data.size());
+    fftwf_plan plan;
+    {
+        std::lock_guard<std::mutex> lock(planner_mutex());
+        plan = fftwf_plan_dft_2d(height, width, buffer, buffer, inverse ? FFTW_BACKWARD : FFTW_FORWARD, FFTW_ESTIMATE);
+    }
+    std::memcpy(static_cast<void*>(buffer), data.data(), data.size() * sizeof(fftwf_complex));
+    fftwf_execute(plan);
+    std::memcpy(static_cast<void*>(data.data()), buffer, data.size() * sizeof(fftwf_complex));
+    {
+        std::lock_guard<std::mutex> lock(planner_mutex());
+        fftwf_destroy_plan(plan);
+    }
+    fftwf_free(buffer);
+}
+
 }  // namespace stochtex

@@ -20,4 +20,9 @@ std::vector<std::complex<float>> periodic_component_fft_2d(const std::vector<flo
 /// spectrum, times width·height.
 std::vector<float> real_inverse_fft_2d(const std::vector<std::complex<float>>& half_spectrum, int width, int height);
 
+/// Unnormalised complex DFT of a width×height array in place (forward: e^{−2πi·k·x/n};
+/// inverse: e^{+2πi·k·x/n}, without the 1/(width·height)). For analytic (one-sided) band-pass
+/// filters, whose outputs are complex: the steerable pyramid's.
+void complex_fft_2d(std::vector<std::complex<float>>& data, int width, int height, bool inverse);
+
 }  // namespace stochtex
