@@ -1,6 +1,6 @@
 #include "commands.h"
 
-#include "plot.h"
+#include "compare_figure.h"
 #include "progress_bar.h"
 
 #include <stochtex/atomic_write.h>
@@ -202,22 +202,6 @@ int InfoCommand::run() const
     return 0;
 }
 
-namespace {
-
-/// Luma histogram (counts normalised to a density) on shared bin edges, for the plot.
-std::vector<double> luma_histogram(const Image& image, double lo, double hi, int bins)
-{
-    std::vector<double> counts(bins, 0.0);
-    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
-        const double luma = 0.2126 * image.pixels[3 * i] + 0.7152 * image.pixels[3 * i + 1] + 0.0722 * image.pixels[3 * i + 2];
-        const int bin = int((luma - lo) / (hi - lo) * bins);
-        if (bin >= 0 && bin < bins) counts[bin] += 1.0 / image.pixel_count();
-    }
-    return counts;
-}
-
-}  // namespace
-
 int CompareCommand::run() const
 {
     ImageReadOptions read_options;
@@ -225,66 +209,19 @@ int CompareCommand::run() const
     if (!output.empty()) check_image_output(output, "the figure");
     const Image photo_image = read_image_linear(photo, read_options);
     const TextureDescription description = read_stex(texture);
-    RenderSettings settings;
-    settings.width = photo_image.width;
-    settings.height = photo_image.height;
-    settings.units_per_pixel = 1.0 / description.pixels_per_unit;
-    const Image synthesis = render(*make_texture(description), settings, terminal_progress_bar());
+    const Image synthesis =
+        render_at_photo_scale(description, photo_image.width, photo_image.height, 0, terminal_progress_bar());
     const ComparisonReport report = compare_images(photo_image, synthesis);
     std::printf("%s vs %s (%dx%d, at the photo's pixel scale)\n%s", photo.c_str(), texture.c_str(), photo_image.width,
                 photo_image.height, format_report(report).c_str());
     if (output.empty()) return 0;
 
-    // Figure: photo | synthesis on top (at most 512 px each), PSD and histogram plots below.
-    const int tile = std::min(512, std::min(photo_image.width, photo_image.height));
-    auto crop = [&](const Image& source) {
-        Image out(tile, tile, 3);
-        for (int y = 0; y < tile; ++y)
-            for (int x = 0; x < tile; ++x)
-                for (int c = 0; c < 3; ++c) out.at(x, y, c) = source.at(x, y, c);
-        return out;
-    };
-    const std::array<float, 3> photo_colour{0.05f, 0.05f, 0.6f}, synthesis_colour{0.7f, 0.08f, 0.02f};
-    const Image psd_panel = plot_panel(tile, tile / 2,
-                                       {{report.psd_reference_luma.frequency, report.psd_reference_luma.power, photo_colour},
-                                        {report.psd_test_luma.frequency, report.psd_test_luma.power, synthesis_colour}},
-                                       true, true);
-    const double lo = 0, hi = std::max(1e-6, 2.0 * (0.2126 * report.mean_reference[0] + 0.7152 * report.mean_reference[1] +
-                                                    0.0722 * report.mean_reference[2]));
-    constexpr int bins = 64;
-    std::vector<double> centres(bins);
-    for (int b = 0; b < bins; ++b) centres[b] = lo + (b + 0.5) * (hi - lo) / bins;
-    const Image histogram_panel = plot_panel(
-        tile, tile / 2,
-        {{centres, luma_histogram(photo_image, lo, hi, bins), photo_colour},
-         {centres, luma_histogram(synthesis, lo, hi, bins), synthesis_colour}},
-        false, false);
-    // The two luma spectra in dB on one colour scale: from the strongest cell of either down
-    // 60 dB (polar_log_psd_distance_db's floor), so equal colours mean equal power.
-    const auto to_db = [](const CentredSpectrum& spectrum) {
-        std::vector<double> db(spectrum.power.size());
-        for (std::size_t i = 0; i < db.size(); ++i)
-            db[i] = spectrum.power[i] > 0 ? 10.0 * std::log10(spectrum.power[i]) : -1e300;
-        return db;
-    };
-    const std::vector<double> photo_db = to_db(report.spectrum_reference_luma),
-                              synthesis_db = to_db(report.spectrum_test_luma);
-    const double db_hi = std::max(*std::max_element(photo_db.begin(), photo_db.end()),
-                                  *std::max_element(synthesis_db.begin(), synthesis_db.end()));
-    const double db_lo = db_hi - 60.0;
-    const int grid = report.spectrum_reference_luma.size;
-    Image figure(2 * tile, tile + tile / 2 + tile, 3);
-    paste(figure, crop(photo_image), 0, 0);
-    paste(figure, crop(synthesis), tile, 0);
-    paste(figure, psd_panel, 0, tile);
-    paste(figure, histogram_panel, tile, tile);
-    paste(figure, heat_map_panel(photo_db, grid, tile, db_lo, db_hi), 0, tile + tile / 2);
-    paste(figure, heat_map_panel(synthesis_db, grid, tile, db_lo, db_hi), tile, tile + tile / 2);
-    write_image(output, figure);
+    const CompareFigure figure = compare_figure(photo_image, synthesis, report);
+    write_image(output, figure.image);
     std::printf("wrote %s (left: photo, right: synthesis; below: radial PSD (log-log) and luma histogram, blue = photo, "
                 "red = synthesis; bottom: luma power spectra, centred, fx right and fy up to +-0.5 cycles/px, "
                 "log power %.1f to %.1f dB, dark to pale)\n",
-                output.c_str(), db_lo, db_hi);
+                output.c_str(), figure.db_lo, figure.db_hi);
     return 0;
 }
 
