@@ -62,7 +62,8 @@ table.batch > tbody > tr > td, table.batch > thead > tr > th { border-bottom: 1p
 table.batch > thead th { cursor: pointer; background: #eee; user-select: none; }
 table.batch > thead th.sorted::after { content: " \25BE"; }
 tr.failed, tr.missing { background: #fde8e8; }
-img { width: 128px; height: 128px; object-fit: cover; background: #ddd; display: inline-block; margin-right: 4px; }
+div.pair { display: flex; gap: 4px; }
+img { width: 128px; height: 128px; object-fit: cover; background: #ddd; }
 .missing-image { outline: 3px solid #c00; }
 table.scores { border-collapse: collapse; font-size: 12px; margin-top: 4px; }
 table.scores td, table.scores th { padding: 1px 6px; text-align: right; border: 0; }
@@ -132,11 +133,11 @@ std::string gallery_html(const std::vector<PhotoRecord>& records)
                 std::to_string(r.index) + " data-name=\"" + escaped(r.name) + "\" data-model=\"" + escaped(r.model) +
                 "\" data-penalty=\"" + penalty + "\" data-bytes=\"" + (r.status == "done" ? std::to_string(r.bytes) : "") +
                 "\">\n<td>" + std::to_string(r.index) + "</td><td>" + escaped(r.name) + "<br><small>" + escaped(r.photo) +
-                (r.width ? "<br>" + std::to_string(r.width) + "&times;" + std::to_string(r.height) : "") + "</small></td><td>";
+                (r.width ? "<br>" + std::to_string(r.width) + "&times;" + std::to_string(r.height) : "") + "</small></td><td><div class=pair>";
         for (const char* image : {"photo.png", "synthesis.png"})
             if (has_output(r, folder + image))
                 html += "<img src=\"" + escaped(folder + image) + "\" alt=\"" + escaped(r.name + " " + image) + "\">";
-        html += "</td><td>" + escaped(r.model) + "<br><small>" + escaped(r.colour) + "</small></td><td class=penalty>" +
+        html += "</div></td><td>" + escaped(r.model) + "<br><small>" + escaped(r.colour) + "</small></td><td class=penalty>" +
                 (penalty.empty() ? std::string("&ndash;") : fixed(chosen->penalty, "%.3f")) + "</td><td>" +
                 (r.status == "done" ? std::to_string(r.bytes) : "") + "</td><td>";
         if (r.status != "done") html += "<div class=error>" + escaped(r.status + ": " + r.error) + "</div>";
