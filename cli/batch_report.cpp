@@ -2,6 +2,7 @@
 
 #include "batch_gallery.h"
 
+#include <stochtex/analysis.h>
 #include <stochtex/atomic_write.h>
 #include <stochtex/error.h>
 
@@ -164,13 +165,7 @@ void fill_from_description(PhotoRecord& record, const stochtex::TextureDescripti
     record.colour = stochtex::to_string(description.colour_mode);
     if (description.chroma_given_brightness.enabled()) record.colour += "+joint";
     record.candidates = description.provenance.model_choice;
-    record.chosen = -1;
-    for (std::size_t i = 0; i < record.candidates.size(); ++i) {
-        const ModelScore& s = record.candidates[i];
-        if (s.model == description.model && s.colour == stochtex::to_string(description.colour_mode) &&
-            s.joint_colour == description.chroma_given_brightness.enabled())
-            record.chosen = int(i);
-    }
+    record.chosen = stochtex::chosen_model_score(description);
 }
 
 void write_batch_plan(const std::string& output_folder, const std::vector<BatchPhoto>& photos)
