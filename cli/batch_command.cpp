@@ -124,6 +124,15 @@ Image crop(const Image& image, int side)
     return out;
 }
 
+/// Temporaries a killed run left in a photo's folder (SIGKILL leaves no time to remove them; see
+/// stochtex/atomic_write.h). The folder is this photo's alone, and only the one task converting
+/// the photo writes there, so whatever .tmp file it holds is stale.
+void remove_stale_temporaries(const fs::path& folder)
+{
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+        if (entry.path().extension() == ".tmp") fs::remove(entry.path());
+}
+
 /// One photo: its analysis and the outputs asked for, each written atomically; a failure is the
 /// record's, never the batch's.
 PhotoRecord convert_photo(const BatchPhoto& photo, const BatchCommands::Options& o, int threads)
@@ -142,6 +151,7 @@ PhotoRecord convert_photo(const BatchPhoto& photo, const BatchCommands::Options&
         if (photo.unit_size_m < 0) throw Error("unit_size: expected a number > 0 (metres)");
         const fs::path folder = fs::path(o.output) / photo.name;
         fs::create_directories(folder);
+        remove_stale_temporaries(folder);
         const Image image = read_image_linear(photo.path);
         record.width = image.width;
         record.height = image.height;

@@ -179,10 +179,15 @@ TEST_F(Batch, ResumeSkipsFinishedPhotosAndDoesNoneTwice)
     const ProgramResult first = stex({"batch", photos.string(), "-o", out, "--model", "wavelet", "--shard", "0/2"});
     ASSERT_TRUE(first.succeeded()) << first;
     EXPECT_TRUE(contains(first.out, "merge the shards with: stex batch-report")) << first;
+    // What a killed run (SIGKILL: no handler runs) leaves of a photo in flight: a temporary.
+    const fs::path stale = dir / "out" / "01_crop_b" / "01_crop_b.stex.4242-0.tmp";
+    fs::create_directories(stale.parent_path());
+    write_file(stale, "half a texture");
     const ProgramResult rest = stex({"batch", photos.string(), "-o", out, "--model", "wavelet", "--resume"});
     ASSERT_TRUE(rest.succeeded()) << rest;
     EXPECT_TRUE(contains(rest.out, "1 to convert (2 done before, skipped)")) << rest;
     EXPECT_TRUE(contains(rest.out, "3 photos, 3 done, 0 failed, 0 missing")) << rest;
+    EXPECT_FALSE(fs::exists(stale)) << "the stale temporary of the photo converted again";
     const ProgramResult again = stex({"batch", photos.string(), "-o", out, "--model", "wavelet", "--resume"});
     ASSERT_TRUE(again.succeeded()) << again;
     EXPECT_TRUE(contains(again.out, "0 to convert (3 done before, skipped)")) << again;
