@@ -108,6 +108,10 @@ TEST_F(Batch, OutputsAreTheSameWhateverJobsThreadsAndShards)
             EXPECT_TRUE(files.at(name) == bytes) << name << " differs between --jobs 1 --threads 1 and " << other;
         }
     }
+    // Each texture is exactly what `stex analyze` writes of the photo.
+    const ProgramResult analyzed = stex({"analyze", (photos / "02_crop_c.png").string(), "-o", (dir / "alone.stex").string()});
+    ASSERT_TRUE(analyzed.succeeded()) << analyzed;
+    EXPECT_TRUE(read_file(dir / "alone.stex") == one.at("02_crop_c/02_crop_c.stex")) << "stex batch and stex analyze differ";
     // The choice is the analysis's own: the score table of `stex analyze --model auto`, kept in the report.
     const std::string report = read_file(dir / "one" / "report.json");
     EXPECT_EQ(count_of(report, "\"status\": \"done\""), 4) << report;
