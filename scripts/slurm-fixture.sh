@@ -13,11 +13,17 @@ dir=${2:?usage: slurm-fixture.sh start|stop DIR}
 
 stop() {
   [ -d "$dir" ] || return 0
-  for pidfile in "$dir"/slurmd.pid "$dir"/slurmctld.pid "$dir"/munged.pid; do
-    [ -s "$pidfile" ] || continue
-    pid=$(cat "$pidfile")
-    kill -TERM "$pid" 2>/dev/null || continue
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  local pids=() pid daemon
+  for daemon in slurmd slurmctld munged; do
+    [ -s "$dir/$daemon.pid" ] || continue
+    pid=$(cat "$dir/$daemon.pid")
+    # Only the daemon itself: a stale pid file's number may belong to another process by now.
+    [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$daemon" ] && pids+=("$pid")
+  done
+  # All at once (each takes a moment to wind down), then whatever is left after 10 s.
+  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do
+    for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     kill -KILL "$pid" 2>/dev/null || true
   done
   rm -rf "$dir"
