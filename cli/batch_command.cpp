@@ -6,6 +6,7 @@
 #include "batch_shard.h"
 #include "commands.h"
 #include "compare_figure.h"
+#include "progress_bar.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/bake.h>
@@ -38,7 +39,7 @@ struct BatchCommands::Options {
     CLI::App *batch = nullptr, *report = nullptr;
     std::string source, output, shard;
     int jobs = 1, threads = 0, preview = 128, bake = 0;
-    bool resume = false, merge = false, compare = false;
+    bool resume = false, merge = false, compare = false, progress_lines = false;
     // The analysis's options, as `stex analyze` has them; a manifest may set model, colour and
     // unit size per photo.
     std::string model = automatic_model, colour, joint_colour = "auto";
@@ -83,6 +84,10 @@ BatchCommands::BatchCommands(CLI::App& app) : options_(std::make_unique<Options>
     o.batch->add_flag("--compare", o.compare, "Also write each photo's compare.png figure (as stex compare -o)");
     o.batch->add_option("--bake", o.bake, "Also bake each texture into <name>.exr, SIZE texels a side (as stex bake --size; 0: no bake)")
         ->check(CLI::Range(0, 32768))->capture_default_str();
+
+    o.batch->add_flag("--progress-lines", o.progress_lines,
+                      "Progress as lines 'progress FRACTION batch DONE/TOTAL eta SECONDS' on stderr, for programs "
+                      "(as stex --progress-lines batch)");
 
     o.report = app.add_subcommand("batch-report", "Merge the shards' reports of a stex batch output folder into report.json, "
                                                   "report.csv, timings.csv and index.html");
@@ -225,6 +230,7 @@ int BatchCommands::run() const
     if (*o.report || o.merge) return merge_and_tell(o.output);
     if (o.source.empty()) throw Error("batch: a folder or manifest of photos is needed (or --merge)");
 
+    if (o.progress_lines) set_progress_lines(true);
     const std::vector<BatchPhoto> photos = list_batch_photos(o.source);
     const BatchShard shard = o.shard.empty() ? BatchShard{} : parse_batch_shard(o.shard, [](const char* name) { return std::getenv(name); });
     std::error_code error;

@@ -236,7 +236,7 @@ TEST_F(Batch, ProgressLinesAndGallery)
 {
     const fs::path photos = make_photos(2);
     const ProgramResult r =
-        stex({"--progress-lines", "batch", photos.string(), "-o", (dir / "out").string(), "--model", "wavelet"});
+        stex({"batch", photos.string(), "-o", (dir / "out").string(), "--model", "wavelet", "--progress-lines"});
     ASSERT_TRUE(r.succeeded()) << r;
     EXPECT_TRUE(contains(r.err, "progress 0.5000 batch 1/2 eta ")) << r;
     EXPECT_TRUE(contains(r.err, "progress 1.0000 batch 2/2 eta 0")) << r;
