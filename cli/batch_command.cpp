@@ -83,7 +83,7 @@ BatchCommands::BatchCommands(CLI::App& app) : options_(std::make_unique<Options>
         ->check(CLI::Range(0, 4096))->capture_default_str();
     o.batch->add_flag("--compare", o.compare, "Also write each photo's compare.png figure (as stex compare -o)");
     o.batch->add_option("--bake", o.bake, "Also bake each texture into <name>.exr, SIZE texels a side (as stex bake --size; 0: no bake)")
-        ->check(CLI::Range(0, 32768))->capture_default_str();
+        ->check(CLI::Range(0, 0) | CLI::Range(8, 32768))->capture_default_str();
 
     o.batch->add_flag("--progress-lines", o.progress_lines,
                       "Progress as lines 'progress FRACTION batch DONE/TOTAL eta SECONDS' on stderr, for programs "
