@@ -1,4 +1,5 @@
 // stex — the stochtex command-line tool. See `stex --help` and README.md.
+#include "batch_command.h"
 #include "bench_command.h"
 #include "commands.h"
 #include "progress_bar.h"
@@ -166,6 +167,7 @@ int main(int argc, char** argv)
     const BenchCommand bench(app);
     const PtmCommands ptm(app);
     const TilingCommands tiling(app);
+    const BatchCommands batch(app);
 
     try {
         app.parse(argc, argv);
@@ -175,7 +177,7 @@ int main(int argc, char** argv)
     set_progress_lines(progress_lines);
     install_signal_handlers();
     if (app.get_subcommands().empty()) {
-        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, bench, ptm, tiling); see stex --help\n");
+        std::fprintf(stderr, "stex: error: a sub-command is required (analyze, render, info, compare, morph, bake, osl, pov, models, bench, ptm, tiling, batch, batch-report); see stex --help\n");
         return 1;
     }
     try {
@@ -191,6 +193,7 @@ int main(int argc, char** argv)
         if (bench.selected()) return bench.run();
         if (ptm.selected()) return ptm.run();
         if (tiling.selected()) return tiling.run();
+        if (batch.selected()) return batch.run();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "stex: error: %s\n", e.what());
         return 1;

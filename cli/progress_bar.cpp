@@ -12,6 +12,7 @@ bool progress_lines = false;
 }
 
 void set_progress_lines(bool enabled) { progress_lines = enabled; }
+bool progress_lines_enabled() { return progress_lines; }
 
 stochtex::ProgressCallback terminal_progress_bar()
 {

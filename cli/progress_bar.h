@@ -11,5 +11,6 @@ namespace stex_cli {
 /// stex as a subprocess (the Blender add-on) parse these.
 stochtex::ProgressCallback terminal_progress_bar();
 void set_progress_lines(bool enabled);
+bool progress_lines_enabled();
 
 }  // namespace stex_cli

@@ -70,6 +70,10 @@ constexpr double max_analysis_value = 1e10;
 TextureDescription analyze(const Image& photo, const AnalysisOptions& options,
                            const ProgressCallback& progress = {});
 
+/// Which row of description.provenance.model_choice the description is (the same model, colour
+/// mode and joint colour); -1 when none is (a model was named, the table is empty).
+int chosen_model_score(const TextureDescription& description);
+
 /// The score table of a description whose model analysis chose (empty when a model was named):
 /// one row per candidate, the chosen one marked, and the rule.
 std::string format_model_choice(const TextureDescription& description);

@@ -164,6 +164,16 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     return result;
 }
 
+int chosen_model_score(const TextureDescription& description)
+{
+    const std::vector<ModelScore>& scores = description.provenance.model_choice;
+    for (std::size_t i = 0; i < scores.size(); ++i)
+        if (scores[i].model == description.model && scores[i].colour == to_string(description.colour_mode) &&
+            scores[i].joint_colour == description.chroma_given_brightness.enabled())
+            return int(i);
+    return -1;
+}
+
 std::string format_model_choice(const TextureDescription& description)
 {
     const std::vector<ModelScore>& scores = description.provenance.model_choice;
@@ -179,9 +189,10 @@ std::string format_model_choice(const TextureDescription& description)
     std::snprintf(line, sizeof line, "%-8s %-10s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
                   "radial dB", "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
     text += line;
-    for (const ModelScore& s : scores) {
-        const bool chosen = s.model == description.model && s.colour == to_string(description.colour_mode) &&
-                            s.joint_colour == description.chroma_given_brightness.enabled();
+    const int chosen_row = chosen_model_score(description);
+    for (std::size_t row = 0; row < scores.size(); ++row) {
+        const ModelScore& s = scores[row];
+        const bool chosen = int(row) == chosen_row;
         const std::string colour = s.colour + (s.joint_colour ? "+joint" : "");
         std::snprintf(line, sizeof line, "%-8s %-10s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
                       colour.c_str(), s.penalty,
