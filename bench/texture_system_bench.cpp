@@ -9,6 +9,8 @@
 //       first repetition — an optimistic "cold" for the baked file);
 // warm: the same lookups again on that TextureSystem (tiles already cached).
 // Prints the medians in M lookups/s, the ratio procedural / baked, and the bytes on disk.
+#include "image/private_texture_system.h"
+
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/stex_file.h>
@@ -126,11 +128,10 @@ int main(int argc, char** argv)
     auto measure = [&](const std::string& file) {
         std::vector<double> cold, warm;
         for (int r = 0; r < repetitions; ++r) {
-            TextureSystem* ts = TextureSystem::create(false);
+            const stochtex::PrivateTextureSystem ts = stochtex::make_private_texture_system();
             ts->attribute("max_memory_MB", 1024.0f);
             cold.push_back(count / run(*ts, ustring(file), lookups, threads) * 1e-6);
             warm.push_back(count / run(*ts, ustring(file), lookups, threads) * 1e-6);
-            TextureSystem::destroy(ts);
         }
         return Result{median(cold), median(warm)};
     };

@@ -5,6 +5,7 @@
 //
 // STOCHTEX_STRESS_SECONDS sets the minimum duration of the threaded phase (default 10 s).
 #include "test_support.h"
+#include "image/private_texture_system.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
@@ -35,14 +36,9 @@ struct Lookup {
     float result[4];
 };
 
-struct TextureSystemDeleter {
-    void operator()(TextureSystem* ts) const { TextureSystem::destroy(ts); }
-};
-using TextureSystemPtr = std::unique_ptr<TextureSystem, TextureSystemDeleter>;
-
-TextureSystemPtr texture_system(float max_memory_mb)
+stochtex::PrivateTextureSystem texture_system(float max_memory_mb)
 {
-    TextureSystemPtr ts(TextureSystem::create(false));
+    stochtex::PrivateTextureSystem ts = stochtex::make_private_texture_system();
     ts->attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR);
     ts->attribute("max_memory_MB", max_memory_mb);
     return ts;

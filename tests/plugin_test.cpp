@@ -4,6 +4,7 @@
 // level a derivative asks for, the periodic wrap must be seamless, and bad input must fail
 // with a message naming the file.
 #include "test_support.h"
+#include "image/private_texture_system.h"
 
 #include "models/wavelet/band_filter.h"
 #include "models/wavelet/wavelet_noise.h"
@@ -361,14 +362,9 @@ TEST(PluginTools, PythonBindingsReadIt)
 
 // ---- TextureSystem ------------------------------------------------------------------------------
 
-struct TextureSystemDeleter {
-    void operator()(TextureSystem* ts) const { TextureSystem::destroy(ts); }
-};
-using TextureSystemPtr = std::unique_ptr<TextureSystem, TextureSystemDeleter>;
-
-TextureSystemPtr private_texture_system()
+stochtex::PrivateTextureSystem private_texture_system()
 {
-    TextureSystemPtr ts(TextureSystem::create(false));
+    stochtex::PrivateTextureSystem ts = stochtex::make_private_texture_system();
     ts->attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR);
     return ts;
 }
