@@ -1,37 +1,62 @@
 #!/usr/bin/env bash
-# The Debian 13 lane of the test command (scripts/run-tests.sh; issue 15): today's hosts next
-# to Debian 12's. In a Debian 13 (trixie) folder made by debootstrap it builds stochtex with
-# g++ 14 against OIIO 2.5 and runs the tests that depend on those hosts:
-#   - the OIIO plugin's tests (plugin_test, plugin_stress_test) against OIIO 2.5.18, its
+# A lane of the test command that builds and tests stochtex inside a Debian folder made by
+# debootstrap: today's hosts next to Debian 12's. Its front-ends say which Debian:
+#   scripts/debian13-lane.sh  Debian 13 (trixie): g++ 14, OIIO 2.5.18, Blender 4.3.2;
+#   scripts/sid-lane.sh       Debian sid: g++ 16, OIIO 3.1.18, Blender 5.2.2.
+# In the folder it builds stochtex against that Debian's packages and runs the tests that
+# depend on those hosts:
+#   - the OIIO plugin's tests (plugin_test, plugin_stress_test) against that OIIO, its
 #     oiiotool and Python bindings;
-#   - the Blender scene tests (blender_scene_test) with Blender 4.3.2, which installs the add-on
+#   - the Blender scene tests (blender_scene_test) with that Blender, which installs the add-on
 #     as an extension (`blender --command extension validate`, package_install_files) and drives
 #     it end to end (analyse, bake, material, Cycles render, compared with the core);
-#   - the add-on's CLI layer (AddonCliLayer) under Python 3.13;
-#   - POV-Ray's scene tests (pov_scene_test, Debian 13's POV-Ray) and the model conformance
-#     suite (model_conformance_test: every model's contracts — filtering, periodic and solid
-#     forms, batches equal to point evaluation, byte-identical round trips — with the core as
-#     g++ 14 compiles it).
+#   - the add-on's CLI layer (AddonCliLayer) under that Python;
+#   - POV-Ray's scene tests (pov_scene_test) and the model conformance suite
+#     (model_conformance_test: every model's contracts — filtering, periodic and solid forms,
+#     batches equal to point evaluation, byte-identical round trips — with the core as that
+#     compiler compiles it).
 # The rest of the suite is the per-model maths in detail, already run by the Debian 12 lane;
 # building and running all of it again here would cost the test command about as much as the
 # first lane for what the conformance suite already checks of the new compiler.
 #
-# The folder is made once and reused when complete: $STOCHTEX_DEBIAN13_ROOT, default
-# /var/cache/stochtex/debian13 (≈ 1.6 GB; delete it to start over). The source tree and
+# The folder is made once and reused when complete: $STOCHTEX_<LANE>_ROOT, default
+# /var/cache/stochtex/<lane> (1.6–2.2 GB; delete it to start over). The source tree and
 # ../shared are bind-mounted read-only inside; the build lives in the folder
 # (/stochtex/build), so a second run only rebuilds what changed. /proc (and a tmpfs on /dev/shm)
 # are mounted only while the folder is in use and unmounted on exit, failure included.
 #
-# Usage (root): scripts/debian13-lane.sh.  STOCHTEX_SKIP_DEBIAN13=1 skips the lane;
-# STOCHTEX_DEBIAN13_TESTS=REGEX runs only the lane's tests whose names match (ctest -R).
+# Usage (root): scripts/debian-folder-lane.sh trixie|sid (the front-ends call it).
+# STOCHTEX_SKIP_<LANE>=1 skips the lane; STOCHTEX_<LANE>_TESTS=REGEX runs only the lane's tests
+# whose names match (ctest -R). <LANE> is DEBIAN13 for trixie, SID for sid.
 set -euo pipefail
 
-if [ "${STOCHTEX_SKIP_DEBIAN13:-0}" = "1" ]; then
-  echo "debian13-lane: skipped (STOCHTEX_SKIP_DEBIAN13=1)"
+suite=${1:-}
+shift || true
+case "$suite" in
+  trixie)
+    lane=debian13 LANE=DEBIAN13 debian="Debian 13"
+    mirror=""  # debootstrap's default
+    apt_options=()
+    ;;
+  sid)
+    lane=sid LANE=SID debian="Debian sid"
+    mirror=http://deb.debian.org/debian
+    # The sid index these machines reach is a fixed snapshot past its Valid-Until date.
+    apt_options=(-o Acquire::Check-Valid-Until=false)
+    ;;
+  *)
+    echo "debian-folder-lane: usage: $0 trixie|sid [--inside]" >&2
+    exit 2
+    ;;
+esac
+skip_var=STOCHTEX_SKIP_$LANE root_var=STOCHTEX_${LANE}_ROOT tests_var=STOCHTEX_${LANE}_TESTS
+
+if [ "${!skip_var:-0}" = "1" ]; then
+  echo "$lane-lane: skipped ($skip_var=1)"
   exit 0
 fi
 
-# The packages of the lane inside Debian 13: the build (no Google Benchmark: the lane builds no
+# The packages of the lane inside the folder (the same names in trixie and sid): the build (no Google Benchmark: the lane builds no
 # bench/), OIIO's tools and Python bindings for the plugin tests, Blender and xvfb for the scene
 # tests, POV-Ray for its scene tests.
 packages=(
@@ -42,22 +67,23 @@ packages=(
   libgtest-dev libgmock-dev
   blender xvfb xauth povray python3-numpy
 )
-# The build targets and tests of the lane (see the header for why these).
+# The build targets and tests of the lane (see the header for why these; ColourSpaceNames: the
+# names a photo's colour space has in that OIIO).
 targets=(stex stex_imageio stochtex_addon plugin_test plugin_stress_test blender_scene_test pov_scene_test
-         model_conformance_test)
-tests='(^|/)(PluginImageInput|PluginTools|PluginTextureSystem|PluginStress|BlenderScene|PovScene|PovCli|ModelConformance|ModelRegistry)\.|^AddonCliLayer$'
+         model_conformance_test colour_space_names_test)
+tests='(^|/)(PluginImageInput|PluginTileCache|PluginTools|PluginTextureSystem|PluginStress|BlenderScene|PovScene|PovCli|ModelConformance|ModelRegistry|ColourSpaceNames)\.|^AddonCliLayer$'
 
 if [ "${1:-}" = "--inside" ]; then
-  # ---- inside the Debian 13 folder (chroot): build and test ----
+  # ---- inside the folder (chroot): build and test ----
   export HOME=/root LANG=C.UTF-8
   jobs=$(nproc)
-  echo "debian13-lane: $(. /etc/os-release; echo "$PRETTY_NAME"), $(g++ --version | head -1)," \
+  echo "$lane-lane: $(. /etc/os-release; echo "$PRETTY_NAME"), $(g++ --version | head -1)," \
        "OIIO $(dpkg-query -W -f='${Version}' libopenimageio-dev), $(blender --version 2>/dev/null | head -1)"
   nice cmake -S /stochtex/src -B /stochtex/build -DCMAKE_BUILD_TYPE=Release \
     -DSTOCHTEX_BUILD_BENCH=OFF -DSTOCHTEX_TSAN_TESTS=OFF -DSTOCHTEX_SHARED_DIR=/stochtex/shared >/dev/null
   nice cmake --build /stochtex/build -j"$jobs" --target "${targets[@]}"
-  echo "debian13-lane: built in $SECONDS s"
-  selected=${STOCHTEX_DEBIAN13_TESTS:-$tests}
+  echo "$lane-lane: built in $SECONDS s"
+  selected=${!tests_var:-$tests}
   # The interactive test measures whether Blender's UI keeps ticking during a bake: it runs
   # alone afterwards, not beside another test's Cycles render on the same cores.
   alone='^BlenderScene\.InteractiveOperator'
@@ -72,9 +98,9 @@ fi
 # ---- on the host (Debian 12, root): make or reuse the folder, then run the part above in it ----
 src=$(cd "$(dirname "$0")/.." && pwd)
 shared=$(cd "$src/.." && pwd)/shared
-root=${STOCHTEX_DEBIAN13_ROOT:-/var/cache/stochtex/debian13}
+root=${!root_var:-/var/cache/stochtex/$lane}
 if [ "$(id -u)" -ne 0 ]; then
-  echo "debian13-lane: needs root (debootstrap, chroot, mounts); STOCHTEX_SKIP_DEBIAN13=1 skips the lane" >&2
+  echo "$lane-lane: needs root (debootstrap, chroot, mounts); $skip_var=1 skips the lane" >&2
   exit 1
 fi
 start=$SECONDS
@@ -104,30 +130,33 @@ ready="$root/.stochtex-lane-ready"
 if [ ! -f "$ready" ] || [ "$(cat "$ready")" != "${packages[*]}" ]; then
   if [ ! -f "$root/.stochtex-bootstrapped" ]; then
     # Nothing, or an interrupted debootstrap: start the folder afresh.
-    if mounted_below; then echo "debian13-lane: something is still mounted under $root; not removing it" >&2; exit 1; fi
+    if mounted_below; then echo "$lane-lane: something is still mounted under $root; not removing it" >&2; exit 1; fi
     rm -rf --one-file-system "$root"
     dpkg-query -W -f='${Status}' debootstrap 2>/dev/null | grep -q "install ok installed" ||
       { DEBIAN_FRONTEND=noninteractive apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap; }
-    echo "debian13-lane: debootstrap trixie into $root"
-    debootstrap --variant=minbase trixie "$root" >"$root.debootstrap.log" 2>&1 ||
-      { tail -20 "$root.debootstrap.log" >&2; exit 1; }
+    echo "$lane-lane: debootstrap $suite into $root"
+    debootstrap --variant=minbase "$suite" "$root" $mirror >"$root.debootstrap.log" 2>&1 ||
+      { tail -20 "$root.debootstrap.log" >&2; echo "$lane-lane: FAILED: debootstrap $suite ${mirror:-(default mirror)} failed (log above, $root.debootstrap.log)" >&2; exit 1; }
     ln -sf ../proc/self/mounts "$root/etc/mtab"  # Blender lists the mounted file systems
     touch "$root/.stochtex-bootstrapped"
-    echo "debian13-lane: debootstrap done after $((SECONDS - start)) s"
+    echo "$lane-lane: debootstrap done after $((SECONDS - start)) s"
   fi
   cp /etc/resolv.conf "$root/etc/resolv.conf"
   # No services start inside the folder (packages such as dbus would try).
   printf '#!/bin/sh\nexit 101\n' >"$root/usr/sbin/policy-rc.d" && chmod +x "$root/usr/sbin/policy-rc.d"
   mount_in "$root/proc" -t proc proc
-  echo "debian13-lane: installing ${#packages[@]} packages in Debian 13"
-  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get update -qq
-  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+  echo "$lane-lane: installing ${#packages[@]} packages in $debian"
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get "${apt_options[@]}" update -qq ||
+    { echo "$lane-lane: FAILED: apt-get update in $debian failed (its package index is unreachable?)" >&2; exit 1; }
+  chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get "${apt_options[@]}" install -y -qq --no-install-recommends \
+    "${packages[@]}" >"$root.install.log" 2>&1 ||
+    { tail -20 "$root.install.log" >&2; echo "$lane-lane: FAILED: cannot install the lane's packages in $debian (log above, $root.install.log)" >&2; exit 1; }
   chroot "$root" apt-get clean
   unmount_all
   echo "${packages[*]}" >"$ready"
-  echo "debian13-lane: folder ready after $((SECONDS - start)) s"
+  echo "$lane-lane: folder ready after $((SECONDS - start)) s"
 else
-  echo "debian13-lane: reusing $root"
+  echo "$lane-lane: reusing $root"
 fi
 
 mount_in "$root/proc" -t proc proc
@@ -139,7 +168,7 @@ if [ -d "$shared" ]; then
   mount -o remount,bind,ro "$root/stochtex/shared"
 fi
 status=0
-chroot "$root" /bin/bash /stochtex/src/scripts/debian13-lane.sh --inside || status=$?
+chroot "$root" /bin/bash /stochtex/src/scripts/debian-folder-lane.sh "$suite" --inside || status=$?
 unmount_all
-echo "debian13-lane: $([ $status -eq 0 ] && echo passed || echo FAILED) in $((SECONDS - start)) s"
+echo "$lane-lane: $([ $status -eq 0 ] && echo passed || echo FAILED) in $((SECONDS - start)) s"
 exit $status
