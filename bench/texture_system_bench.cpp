@@ -10,6 +10,7 @@
 // warm: the same lookups again on that TextureSystem (tiles already cached).
 // Prints the medians in M lookups/s, the ratio procedural / baked, and the bytes on disk.
 #include "image/private_texture_system.h"
+#include "median.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
@@ -75,13 +76,6 @@ double run(TextureSystem& ts, ustring file, const std::vector<Lookup>& lookups, 
         });
     for (auto& worker : workers) worker.join();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median(std::vector<double> values)
-{
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace

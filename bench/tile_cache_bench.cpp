@@ -7,6 +7,7 @@
 //
 // Prints, for each: the reads, the tiles made, the reads served from the cache (the plugin's own
 // counts, STOCHTEX_TILE_STATS) and the median wall time; and that both gave the same bytes.
+#include "median.h"
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/stex_file.h>
@@ -77,13 +78,6 @@ Run cycles_reads(const std::string& path, int block, long long cache_mb, const f
         run.served += level["served"].get<long long>();
     }
     return run;
-}
-
-double median(std::vector<double> values)
-{
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace

@@ -41,25 +41,14 @@ mat = bpy.data.materials.new("live stex")
 plane.data.materials.append(mat)
 if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: every material has nodes
     mat.use_nodes = True
-nodes, links = mat.node_tree.nodes, mat.node_tree.links
+nodes = mat.node_tree.nodes
 image = bpy.data.images.load(os.path.abspath(args.stex))  # Blender's own reader logs "unknown format": fine
 image.colorspace_settings.name = "Non-Color"  # the plugin's texels are linear Rec.709 already
 tex = nodes.new("ShaderNodeTexImage")
 tex.image = image
 tex.interpolation = "Closest"
-emission = nodes.new("ShaderNodeEmission")
-emission.inputs["Strength"].default_value = 1.0
-links.new(tex.outputs["Color"], emission.inputs["Color"])
-output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-links.new(emission.outputs[0], output.inputs["Surface"])
-
-# The plane's x in [-1, 1] is u in [0, 1]; its top edge (y = 1) is the image's first row.
-half = args.size / args.texels
-bpy.ops.object.camera_add(location=(-1 + half, 1 - half, 5), rotation=(0, 0, 0))
-camera = bpy.context.active_object
-camera.data.type = "ORTHO"
-camera.data.ortho_scale = 2 * half
-scene.camera = camera
+s.emission_from(mat, tex.outputs["Color"])
+camera = s.texel_camera(scene, args.size, args.texels)
 report = {"blender": bpy.app.version_string,
           "live_seconds": s.render(scene, os.path.join(args.out, "live.exr"), "OPEN_EXR")}
 
