@@ -37,12 +37,16 @@ case "$suite" in
     lane=debian13 LANE=DEBIAN13 debian="Debian 13"
     mirror=""  # debootstrap's default
     apt_options=()
+    extra_packages=()
     ;;
   sid)
     lane=sid LANE=SID debian="Debian sid"
     mirror=http://deb.debian.org/debian
     # The sid index these machines reach is a fixed snapshot past its Valid-Until date.
     apt_options=(-o Acquire::Check-Valid-Until=false)
+    # Blender 5.2's extension system imports cattrs when it registers (without it, `blender
+    # --command extension validate` prints a traceback); Debian's blender does not depend on it.
+    extra_packages=(python3-cattr)
     ;;
   *)
     echo "debian-folder-lane: usage: $0 trixie|sid [--inside]" >&2
@@ -66,6 +70,7 @@ packages=(
   libeigen3-dev libfftw3-dev libhwy-dev libtbb-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev
   blender xvfb xauth povray python3-numpy
+  "${extra_packages[@]}"
 )
 # The build targets and tests of the lane (see the header for why these; ColourSpaceNames: the
 # names a photo's colour space has in that OIIO).
