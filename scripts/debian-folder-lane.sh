@@ -44,9 +44,9 @@ case "$suite" in
     mirror=http://deb.debian.org/debian
     # The sid index these machines reach is a fixed snapshot past its Valid-Until date.
     apt_options=(-o Acquire::Check-Valid-Until=false)
-    # Blender 5.2's extension system imports cattrs when it registers (without it, `blender
-    # --command extension validate` prints a traceback); Debian's blender does not depend on it.
-    extra_packages=(python3-cattr)
+    # Blender 5.2's extension system imports cattrs and requests when it registers (without them
+    # every headless run prints a traceback); Debian's blender depends on neither.
+    extra_packages=(python3-cattr python3-requests)
     ;;
   *)
     echo "debian-folder-lane: usage: $0 trixie|sid [--inside]" >&2
