@@ -53,11 +53,12 @@ report = {"blender": bpy.app.version_string,
           "live_seconds": s.render(scene, os.path.join(args.out, "live.exr"), "OPEN_EXR")}
 
 if args.receding:
-    # Eye 2 cm above the plane's near edge, looking across it: the footprint grows with distance.
+    # Eye 30 cm above the plane, 20 cm before its near edge, looking 20° down across it to the
+    # horizon: the footprint grows with distance, from level ~5 near to the coarsest levels far.
     tex.interpolation = "Linear"
     camera.data.type = "PERSP"
     camera.data.lens = 50
-    camera.location = (0.0, -1.0, 0.02)
-    camera.rotation_euler = (1.5, 0.0, 0.0)
+    camera.location = (0.0, -1.2, 0.3)
+    camera.rotation_euler = (1.2217, 0.0, 0.0)
     report["receding_seconds"] = s.render(scene, os.path.join(args.out, "receding.png"), "PNG")
 s.write_report(args.out, "live.json", report)
