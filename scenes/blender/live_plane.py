@@ -61,4 +61,6 @@ if args.receding:
     camera.location = (0.0, -1.2, 0.3)
     camera.rotation_euler = (1.2217, 0.0, 0.0)
     report["receding_seconds"] = s.render(scene, os.path.join(args.out, "receding.png"), "PNG")
+with open("/proc/self/status") as status:  # the process' peak resident memory (Linux)
+    report["peak_rss_mb"] = next(int(line.split()[1]) for line in status if line.startswith("VmHWM")) / 1024
 s.write_report(args.out, "live.json", report)
