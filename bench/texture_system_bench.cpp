@@ -9,6 +9,9 @@
 //       first repetition — an optimistic "cold" for the baked file);
 // warm: the same lookups again on that TextureSystem (tiles already cached).
 // Prints the medians in M lookups/s, the ratio procedural / baked, and the bytes on disk.
+#include "image/private_texture_system.h"
+#include "median.h"
+
 #include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/stex_file.h>
@@ -75,13 +78,6 @@ double run(TextureSystem& ts, ustring file, const std::vector<Lookup>& lookups, 
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-double median(std::vector<double> values)
-{
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 }  // namespace
 
 int main(int argc, char** argv)
@@ -126,11 +122,10 @@ int main(int argc, char** argv)
     auto measure = [&](const std::string& file) {
         std::vector<double> cold, warm;
         for (int r = 0; r < repetitions; ++r) {
-            TextureSystem* ts = TextureSystem::create(false);
+            const stochtex::PrivateTextureSystem ts = stochtex::make_private_texture_system();
             ts->attribute("max_memory_MB", 1024.0f);
             cold.push_back(count / run(*ts, ustring(file), lookups, threads) * 1e-6);
             warm.push_back(count / run(*ts, ustring(file), lookups, threads) * 1e-6);
-            TextureSystem::destroy(ts);
         }
         return Result{median(cold), median(warm)};
     };

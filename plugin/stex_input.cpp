@@ -6,8 +6,16 @@
 // - Tiles are requested concurrently and without a lock (ImageCache/TextureSystem threads): the
 //   tile path reads only state fixed at open() (the MipImage and per-level specs) and never
 //   m_spec, which seek_subimage() changes.
+// - Tiles are kept in a small per-file cache (tile_cache.h) because some hosts re-read them
+//   (Cycles 5.2 about 9 times each); its budget is the open hint "stex:tile_cache_mb", else
+//   $STOCHTEX_TILE_CACHE_MB, else default_tile_cache_mb; 0 turns it off. Blocks of more than
+//   max_cached_block_tiles tiles (whole levels: oiiotool, read_image) are made in parallel
+//   bands and not kept.
 // - Every problem in open() is an errorfmt() naming the file and the field or hint; open-time
 //   configuration hints ("stex:width" …) override the file's "image" block.
+#include "tile_cache.h"
+#include "tile_stats.h"
+
 #include <stochtex/error.h>
 #include <stochtex/lighting.h>
 #include <stochtex/mip_image.h>
@@ -19,6 +27,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <limits>
 #include <cstring>
 #include <fstream>
@@ -41,7 +50,13 @@ namespace {
 /// The open-time hints this plugin understands. Any other "stex:" hint is an error (a typo
 /// must not silently give the default).
 constexpr const char* known_hints[] = {"stex:width", "stex:height", "stex:tile_width", "stex:tile_height",
-                                       "stex:scale", "stex:channels", "stex:seed", "stex:light"};
+                                       "stex:scale", "stex:channels", "stex:seed", "stex:light", "stex:tile_cache_mb"};
+
+/// The tile cache's budget per open file when neither the hint nor the environment sets one:
+/// about 1 300 tiles of 64² RGB floats, more than a Cycles render keeps in flight per file.
+constexpr long long default_tile_cache_mb = 64;
+/// Larger blocks are whole-level reads that would only flush the cache.
+constexpr long long max_cached_block_tiles = 16;
 
 /// The whole of `text` as a number (no leading or trailing characters).
 template <class Number>
@@ -83,6 +98,7 @@ bool integer_hint(const ImageSpec& config, const char* name, long long min, long
 
 class StexInput final : public ImageInput {
 public:
+    ~StexInput() override { close(); }
     const char* format_name() const override { return "stex"; }
     bool valid_file(const std::string& filename) const override;
     bool open(const std::string& name, ImageSpec& newspec) override { return open(name, newspec, ImageSpec()); }
@@ -100,6 +116,10 @@ public:
 private:
     bool apply_hints(const ImageSpec& config, stochtex::TextureDescription& description,
                      stochtex::ImageLayout& layout, std::string& problem) const;
+    bool tile_cache_budget(const ImageSpec& config, long long& megabytes, std::string& problem) const;
+    /// The tile at (x, y) of a level, whole (texels past the level's edges zeroed), from the
+    /// cache or made and kept.
+    void fill_tile(int miplevel, int x, int y, float* out) const;
     bool valid_level(int subimage, int miplevel) const
     {
         return image_ && subimage == 0 && miplevel >= 0 && miplevel < image_->level_count();
@@ -108,6 +128,8 @@ private:
     std::string filename_;
     std::unique_ptr<const stochtex::MipImage> image_;
     std::vector<ImageSpec> level_specs_;  // fixed at open(): read by any thread
+    std::unique_ptr<stochtex::plugin::TileCache> tiles_;  // thread-safe itself
+    std::vector<stochtex::plugin::LevelTiles> level_tiles_;
     int current_level_ = 0;
 };
 
@@ -131,7 +153,7 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
         if (!Strutil::istarts_with(name, "stex:")) continue;
         if (std::find(std::begin(known_hints), std::end(known_hints), name) == std::end(known_hints)) {
             problem = "unknown open hint \"" + name + "\" (known: stex:width, stex:height, stex:tile_width, "
-                      "stex:tile_height, stex:scale, stex:channels, stex:seed, stex:light)";
+                      "stex:tile_height, stex:scale, stex:channels, stex:seed, stex:light, stex:tile_cache_mb)";
             return false;
         }
     }
@@ -215,7 +237,13 @@ bool StexInput::open(const std::string& name, ImageSpec& newspec, const ImageSpe
             errorfmt("{}: {}", name, problem);
             return false;
         }
+        long long cache_mb = 0;
+        if (!tile_cache_budget(config, cache_mb, problem)) {
+            errorfmt("{}: {}", name, problem);
+            return false;
+        }
         image_ = std::make_unique<const stochtex::MipImage>(description, layout, name + " (image layout and open hints)");
+        tiles_ = std::make_unique<stochtex::plugin::TileCache>(std::size_t(cache_mb) << 20, image_->level_count());
 
         // The spec of every level is built once, here: seek_subimage() only copies one.
         ImageSpec level0(layout.width, layout.height, image_->channel_count(), TypeDesc::FLOAT);
@@ -254,6 +282,8 @@ bool StexInput::open(const std::string& name, ImageSpec& newspec, const ImageSpe
             ImageSpec spec = level0;
             spec.width = spec.full_width = image_->level_width(level);
             spec.height = spec.full_height = image_->level_height(level);
+            level_tiles_.push_back({(spec.width + spec.tile_width - 1) / spec.tile_width,
+                                    (spec.height + spec.tile_height - 1) / spec.tile_height});
             level_specs_.push_back(std::move(spec));
         }
     } catch (const std::exception& e) {
@@ -269,8 +299,26 @@ bool StexInput::open(const std::string& name, ImageSpec& newspec, const ImageSpe
     return true;
 }
 
+bool StexInput::tile_cache_budget(const ImageSpec& config, long long& megabytes, std::string& problem) const
+{
+    // 2^20 MB (a terabyte) is far past any real budget; the bound keeps the byte count in range.
+    constexpr long long most = 1 << 20;
+    megabytes = default_tile_cache_mb;
+    if (const char* env = std::getenv("STOCHTEX_TILE_CACHE_MB"); env && *env) {
+        if (!parse_exact(std::string(env), megabytes) || megabytes < 0 || megabytes > most) {
+            problem = "STOCHTEX_TILE_CACHE_MB: expected an integer in [0, " + std::to_string(most) + "], got \"" +
+                      env + "\"";
+            return false;
+        }
+    }
+    return integer_hint(config, "stex:tile_cache_mb", 0, most, megabytes, problem);
+}
+
 bool StexInput::close()
 {
+    if (tiles_) stochtex::plugin::report_tile_stats(filename_, *tiles_, level_tiles_);
+    tiles_.reset();
+    level_tiles_.clear();
     image_.reset();
     level_specs_.clear();
     current_level_ = 0;
@@ -320,22 +368,30 @@ bool StexInput::read_native_tile(int subimage, int miplevel, int x, int y, int /
         errorfmt("{}: no tile at ({}, {}) in level {}", filename_, x, y, miplevel);
         return false;
     }
+    fill_tile(miplevel, x, y, static_cast<float*>(data));
+    return true;
+}
+
+void StexInput::fill_tile(int miplevel, int x, int y, float* out) const
+{
+    const ImageSpec& spec = level_specs_[miplevel];
+    const int tile_w = spec.tile_width, tile_h = spec.tile_height, channels = spec.nchannels;
+    const std::size_t count = std::size_t(tile_w) * tile_h * channels;
+    if (tiles_->copy(miplevel, x, y, out, count)) return;
     // Tiles on the right and bottom edges hang over the level: OIIO still expects a whole
     // tile, and ignores the part outside; it is zeroed so no uninitialised memory escapes.
-    const int tile_w = spec.tile_width, tile_h = spec.tile_height, channels = spec.nchannels;
     const int w = std::min(tile_w, spec.width - x), h = std::min(tile_h, spec.height - y);
-    float* out = static_cast<float*>(data);
     if (w == tile_w && h == tile_h) {
         image_->fill(miplevel, x, y, w, h, out);
-        return true;
+    } else {
+        std::vector<float> region(std::size_t(w) * h * channels);
+        image_->fill(miplevel, x, y, w, h, region.data());
+        std::fill(out, out + count, 0.0f);
+        for (int row = 0; row < h; ++row)
+            std::copy_n(&region[std::size_t(row) * w * channels], std::size_t(w) * channels,
+                        out + std::size_t(row) * tile_w * channels);
     }
-    std::vector<float> region(std::size_t(w) * h * channels);
-    image_->fill(miplevel, x, y, w, h, region.data());
-    std::fill(out, out + std::size_t(tile_w) * tile_h * channels, 0.0f);
-    for (int row = 0; row < h; ++row)
-        std::copy_n(&region[std::size_t(row) * w * channels], std::size_t(w) * channels,
-                    out + std::size_t(row) * tile_w * channels);
-    return true;
+    tiles_->store(miplevel, x, y, out, count);
 }
 
 bool StexInput::read_native_tiles(int subimage, int miplevel, int xbegin, int xend, int ybegin, int yend, int zbegin,
@@ -369,6 +425,24 @@ bool StexInput::read_native_tiles(int subimage, int miplevel, int xbegin, int xe
     const int stride = xend - xbegin, channels = spec.nchannels;
     const int w = std::min(xend, spec.width) - xbegin, y_stop = std::min(yend, spec.height);
     float* out = static_cast<float*>(data);
+    const long long tiles_across = (stride + spec.tile_width - 1) / spec.tile_width;
+    const long long tiles_down = (yend - ybegin + spec.tile_height - 1) / spec.tile_height;
+    if (whole_tiles(xbegin, xend, spec.width, spec.tile_width) && whole_tiles(ybegin, yend, spec.height, spec.tile_height) &&
+        tiles_across * tiles_down <= max_cached_block_tiles) {
+        // Tile by tile through the cache (Cycles 5.2 reads single tiles this way), each copied
+        // into its place in the block's rows.
+        const std::size_t tile_row = std::size_t(spec.tile_width) * channels;
+        std::vector<float> tile(tile_row * spec.tile_height);
+        for (int ty = ybegin; ty < yend; ty += spec.tile_height)
+            for (int tx = xbegin; tx < xend; tx += spec.tile_width) {
+                fill_tile(miplevel, tx, ty, tile.data());
+                for (int row = 0; row < spec.tile_height; ++row)
+                    std::copy_n(&tile[row * tile_row], tile_row,
+                                out + (std::size_t(ty - ybegin + row) * stride + (tx - xbegin)) * channels);
+            }
+        return true;
+    }
+    tiles_->count_made(miplevel, std::uint64_t(tiles_across * tiles_down));
     const auto row_at = [&](int64_t y) { return out + std::size_t(y - ybegin) * std::size_t(stride) * std::size_t(channels); };
     if (y_stop < yend) std::fill(row_at(y_stop), row_at(yend), 0.0f);
     const stochtex::MipImage& image = *image_;

@@ -14,3 +14,5 @@ if [ "${STOCHTEX_SANITIZER_LANE:-ON}" != OFF ]; then bash scripts/sanitizer-lane
 # 4.3 installing the add-on as an extension, in a debootstrap folder (scripts/debian13-lane.sh;
 # ≈ 8–9 min from nothing on 2 idle cores, ≈ 2 min when the folder is reused; README). STOCHTEX_SKIP_DEBIAN13=1 skips it.
 bash scripts/debian13-lane.sh
+# Debian sid lane (issue 31): g++ 16, OIIO 3.1, Blender 5.2 (scripts/sid-lane.sh). STOCHTEX_SKIP_SID=1 skips it.
+bash scripts/sid-lane.sh

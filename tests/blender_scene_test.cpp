@@ -7,8 +7,10 @@
 // Skips when `blender` is not on PATH (scripts/install-deps.sh --with-blender installs it).
 #include "test_support.h"
 
+#include <stochtex/analysis.h>
 #include <stochtex/image.h>
 #include <stochtex/metrics.h>
+#include <stochtex/mip_image.h>
 #include <stochtex/render.h>
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
@@ -215,6 +217,75 @@ TEST(BlenderScene, ShowcaseRenders)
     }
     const auto report = read_json(out + "/showcase.json");
     std::printf("showcase 320x180, 8 samples: %.2f s render\n", report["render_seconds"].get<double>());
+}
+
+// Cycles renders a .stex live, through the OIIO plugin, with no bake (issue 31): straight on, one
+// pixel per level-0 texel, the render equals the plugin's texels (the core's MipImage); Blender
+// 5.2's texture cache streams only the tiles it needs (the plugin's STOCHTEX_TILE_STATS counts),
+// older Blenders read the whole of level 0, so their file declares a smaller image.
+TEST(BlenderScene, LiveStexRendersThroughThePlugin)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const auto [major, minor] = blender_version();
+    const bool streams = major * 100 + minor >= 502;  // Cycles' own texture cache (5.2)
+    const std::string out = test::temp_dir("blender-live");
+    constexpr int size = 128;
+    const int texels = streams ? 32768 : 4096;
+    TextureDescription description = analyze(read_image_linear(test::repo_exemplar("concrete_512.png")), {});
+    ImageLayout layout;
+    layout.width = layout.height = texels;
+    description.image = layout;
+    const std::string stex = out + "/live.stex";
+    write_stex(stex, description);
+    const std::string plugins = test::shell_quote(STOCHTEX_PLUGIN_DIR);
+    const auto result = test::run_command(
+        blender_environment(out) + " OPENIMAGEIO_PLUGIN_PATH=" + plugins + " OIIO_LIBRARY_PATH=" + plugins +
+        " STOCHTEX_TILE_STATS=" + test::shell_quote(out + "/tiles.jsonl") + " timeout 300 blender -b --factory-startup --python " +
+        test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/live_plane.py") + " -- --addon " +
+        test::shell_quote(STOCHTEX_ADDON_ZIP) + " --photo " + test::shell_quote(test::repo_exemplar("concrete_512.png")) +
+        " --out " + test::shell_quote(out) + " --stex " + test::shell_quote(stex) + " --texels " + std::to_string(texels) +
+        " --size " + std::to_string(size) + " --samples 4" + (streams ? " --receding" : ""));
+    ASSERT_EQ(result.status, 0) << result.output;
+
+    // 1. Texel for texel: the top-left size² texels of level 0, as the plugin makes them.
+    const Image blender = read_image_linear(out + "/live.exr");
+    ASSERT_EQ(blender.width, size);
+    const MipImage image(description, layout, "live.stex");
+    Image texels_expected(size, size, 3);
+    image.fill(0, 0, 0, size, size, texels_expected.pixels.data());
+    const double texel_rms = rms_difference_over_sigma(blender, texels_expected);
+    const auto report = read_json(out + "/live.json");
+    std::printf("Blender %d.%d, live %d² of a %d² .stex: %.2f s render, texel-for-texel RMS %.4f sigma\n", major, minor,
+                size, texels, report["live_seconds"].get<double>(), texel_rms);
+    EXPECT_LT(texel_rms, 0.01);  // the baked route's tolerance (MeasurementPlaneMatchesCore)
+
+    // 2. What Cycles asked the plugin for, per MIP level (one line per file Cycles opened).
+    std::ifstream lines(out + "/tiles.jsonl");
+    std::vector<std::uint64_t> made, served, tiles;
+    for (std::string line; std::getline(lines, line);) {
+        const nlohmann::json counts = nlohmann::json::parse(line);
+        for (const auto& level : counts["levels"]) {
+            const std::size_t l = level["level"].get<std::size_t>();
+            made.resize(std::max(made.size(), l + 1)), served.resize(made.size()), tiles.resize(made.size());
+            made[l] += level["made"].get<std::uint64_t>();
+            served[l] += level["served"].get<std::uint64_t>();
+            tiles[l] = level["tiles"].get<std::uint64_t>();
+        }
+    }
+    ASSERT_FALSE(made.empty()) << "no tile counts: was the plugin loaded? " << result.output;
+    std::uint64_t all_made = 0, all_tiles = 0;
+    for (std::size_t l = 0; l < made.size(); ++l) {
+        if (made[l] || served[l]) std::printf("  level %zu: %llu of %llu tiles made, %llu reads served from the cache\n", l,
+                                              (unsigned long long)made[l], (unsigned long long)tiles[l], (unsigned long long)served[l]);
+        all_made += made[l], all_tiles += tiles[l];
+    }
+    if (streams) {
+        // Straight on and receding together: a small part of the texture's tiles, on several levels.
+        EXPECT_LT(all_made * 100, all_tiles) << "more than 1 % of the tiles made";
+        EXPECT_GE(std::count_if(made.begin(), made.end(), [](std::uint64_t m) { return m > 0; }), 3);
+    } else {
+        EXPECT_GE(made[0], tiles[0]) << "Blender < 5.2 reads the whole of level 0";
+    }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // level a derivative asks for, the periodic wrap must be seamless, and bad input must fail
 // with a message naming the file.
 #include "test_support.h"
+#include "image/private_texture_system.h"
 
 #include "models/wavelet/band_filter.h"
 #include "models/wavelet/wavelet_noise.h"
@@ -19,13 +20,17 @@
 #include <OpenImageIO/texture.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <random>
+#include <thread>
 
 namespace fs = std::filesystem;
 using namespace OIIO;
@@ -311,6 +316,153 @@ TEST(PluginImageInput, BadFilesFailWithTheFileAndTheProblem)
     EXPECT_FALSE(open_error(dir + "/missing.stex").empty());
 }
 
+// ---- The tile cache (plugin/tile_cache.h) -------------------------------------------------------
+
+/// The JSON lines STOCHTEX_TILE_STATS collects while `reads` runs (every ImageInput it opens is
+/// closed before it returns).
+std::vector<nlohmann::json> tile_stats_of(const std::string& dir, const std::function<void()>& reads)
+{
+    const std::string log = (fs::path(dir) / "tile-stats.jsonl").string();
+    fs::remove(log);
+    setenv("STOCHTEX_TILE_STATS", log.c_str(), 1);
+    reads();
+    unsetenv("STOCHTEX_TILE_STATS");
+    std::vector<nlohmann::json> lines;
+    std::ifstream in(log);
+    for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+    return lines;
+}
+
+/// One tile (level, x, y) as Cycles 5.2 reads it: read_tiles of that one tile, as floats.
+std::vector<float> read_one_tile(ImageInput& input, int level, int x, int y)
+{
+    const ImageSpec spec = input.spec(0, level);
+    std::vector<float> tile(std::size_t(spec.tile_width) * spec.tile_height * spec.nchannels);
+    EXPECT_TRUE(input.read_tiles(0, level, x, x + spec.tile_width, y, y + spec.tile_height, 0, 1, 0, spec.nchannels,
+                                 TypeFloat, tile.data()))
+        << input.geterror();
+    return tile;
+}
+
+/// Cycles' pattern: each tile of a 4 x 4 block, then its 8 neighbours (a one-texel border).
+/// Returns every tile read, in order.
+std::vector<std::vector<float>> read_like_cycles(ImageInput& input, int level)
+{
+    const ImageSpec spec = input.spec(0, level);
+    const int tw = spec.tile_width, th = spec.tile_height;
+    // The tile itself first, then the 8 around it.
+    constexpr int offsets[9][2] = {{0, 0}, {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    std::vector<std::vector<float>> tiles;
+    for (int ty = 1; ty <= 4; ++ty)
+        for (int tx = 1; tx <= 4; ++tx)
+            for (const auto& offset : offsets)
+                tiles.push_back(read_one_tile(input, level, (tx + offset[0]) * tw, (ty + offset[1]) * th));
+    return tiles;
+}
+
+TEST(PluginTileCache, SameTexelsWithAndWithoutTheCacheAndNeighbourRereadsAreServed)
+{
+    const std::string dir = test::temp_dir("plugin-tile-cache");
+    const std::string path = write_texture(dir, "cache.stex", layout(512, 512, 32));
+    ImageSpec off;
+    off.attribute("stex:tile_cache_mb", 0);
+    std::vector<std::vector<float>> cached, uncached;
+    const std::vector<nlohmann::json> stats = tile_stats_of(dir, [&] {
+        auto with = ImageInput::open(path);
+        auto without = ImageInput::open(path, &off);
+        ASSERT_TRUE(with && without) << OIIO::geterror();
+        for (int level : {0, 1}) {
+            for (auto& tile : read_like_cycles(*with, level)) cached.push_back(std::move(tile));
+            for (auto& tile : read_like_cycles(*without, level)) uncached.push_back(std::move(tile));
+        }
+    });
+    ASSERT_EQ(cached.size(), uncached.size());
+    for (std::size_t i = 0; i < cached.size(); ++i) EXPECT_EQ(cached[i], uncached[i]) << "read " << i;
+    // And the texels are the core's: the first tile read of level 0 is at (32, 32).
+    const std::vector<float> level0 = core_level(read_stex(path), layout(512, 512, 32), 0);
+    for (int row = 0; row < 32; ++row)
+        for (int i = 0; i < 32 * 3; ++i)
+            ASSERT_EQ(cached[0][std::size_t(row) * 32 * 3 + i], level0[(std::size_t(32 + row) * 512 + 32) * 3 + i]);
+
+    // 16 tiles and their neighbours: 36 distinct tiles of the 144 reads per level.
+    ASSERT_EQ(stats.size(), 2u);
+    const nlohmann::json& on = stats[0]["tile_cache_bytes"].get<long long>() > 0 ? stats[0] : stats[1];
+    const nlohmann::json& zero = &on == &stats[0] ? stats[1] : stats[0];
+    EXPECT_EQ(zero["tile_cache_bytes"], 0);
+    EXPECT_EQ(on["tile_cache_bytes"], 64ll << 20);  // the documented default
+    for (int level : {0, 1}) {
+        EXPECT_EQ(on["levels"][level]["made"], 36) << on;
+        EXPECT_EQ(on["levels"][level]["served"], 144 - 36) << on;
+        EXPECT_EQ(zero["levels"][level]["made"], 144) << zero;
+        EXPECT_EQ(zero["levels"][level]["served"], 0) << zero;
+    }
+    EXPECT_EQ(on["levels"][0]["tiles"], 16 * 16);
+    EXPECT_EQ(on["levels"][2]["made"], 0);
+    EXPECT_EQ(on["file"], path);
+}
+
+TEST(PluginTileCache, KeepsToItsBudgetLeastRecentlyUsedFirst)
+{
+    const std::string dir = test::temp_dir("plugin-tile-budget");
+    // 64² RGB float tiles are 48 KiB: a 1 MB budget holds 21 of them.
+    const std::string path = write_texture(dir, "budget.stex", layout(1024, 1024, 64));
+    ImageSpec config;
+    config.attribute("stex:tile_cache_mb", "1");
+    const std::vector<nlohmann::json> stats = tile_stats_of(dir, [&] {
+        auto input = ImageInput::open(path, &config);
+        ASSERT_TRUE(input) << OIIO::geterror();
+        for (int pass = 0; pass < 2; ++pass)  // 32 tiles in a row, twice: each evicted before its turn
+            for (int i = 0; i < 32; ++i) read_one_tile(*input, 0, (i % 16) * 64, (i / 16) * 64);
+        for (int i = 31; i >= 12; --i) read_one_tile(*input, 0, (i % 16) * 64, (i / 16) * 64);  // the last 20 kept
+    });
+    ASSERT_EQ(stats.size(), 1u);
+    EXPECT_EQ(stats[0]["tile_cache_bytes"], 1 << 20);
+    EXPECT_LE(stats[0]["peak_bytes"].get<long long>(), 1 << 20);
+    EXPECT_EQ(stats[0]["peak_bytes"], 21 * 64 * 64 * 3 * 4);
+    EXPECT_EQ(stats[0]["levels"][0]["made"], 64);
+    EXPECT_EQ(stats[0]["levels"][0]["served"], 20);
+}
+
+TEST(PluginTileCache, BadBudgetsNameTheHintOrTheVariable)
+{
+    const std::string dir = test::temp_dir("plugin-tile-budget-bad");
+    const std::string path = write_texture(dir, "bad.stex", layout(256, 256, 32));
+    ImageSpec negative;
+    negative.attribute("stex:tile_cache_mb", -1);
+    EXPECT_TRUE(test::contains(open_error(path, negative), "stex:tile_cache_mb: must be in [0,")) << open_error(path, negative);
+    setenv("STOCHTEX_TILE_CACHE_MB", "lots", 1);
+    const std::string message = open_error(path);
+    unsetenv("STOCHTEX_TILE_CACHE_MB");
+    EXPECT_TRUE(test::contains(message, "bad.stex: STOCHTEX_TILE_CACHE_MB: expected an integer")) << message;
+}
+
+TEST(PluginTileCache, ConcurrentReadersThroughASmallCacheGetTheCoresTexels)
+{
+    const std::string dir = test::temp_dir("plugin-tile-threads");
+    const std::string path = write_texture(dir, "threads.stex", layout(512, 512, 32));
+    const std::vector<float> level0 = core_level(read_stex(path), layout(512, 512, 32), 0);
+    ImageSpec config;
+    config.attribute("stex:tile_cache_mb", 1);  // 85 of the 256 tiles: constant eviction
+    auto input = ImageInput::open(path, &config);
+    ASSERT_TRUE(input) << OIIO::geterror();
+    std::atomic<int> wrong{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            std::mt19937 rng(t);
+            std::vector<float> tile(32 * 32 * 3);
+            for (int i = 0; i < 600; ++i) {
+                const int x = int(rng() % 16) * 32, y = int(rng() % 16) * 32;
+                if (!input->read_native_tile(0, 0, x, y, 0, tile.data())) ++wrong;
+                for (int row = 0; row < 32; ++row)
+                    if (!std::equal(&tile[row * 96], &tile[row * 96] + 96, &level0[(std::size_t(y + row) * 512 + x) * 3]))
+                        ++wrong;
+            }
+        });
+    for (auto& thread : threads) thread.join();
+    EXPECT_EQ(wrong, 0);
+}
+
 // ---- OIIO's tools -------------------------------------------------------------------------------
 
 TEST(PluginTools, OiiotoolListsTheMipLevelsAndWritesLevelZero)
@@ -361,14 +513,9 @@ TEST(PluginTools, PythonBindingsReadIt)
 
 // ---- TextureSystem ------------------------------------------------------------------------------
 
-struct TextureSystemDeleter {
-    void operator()(TextureSystem* ts) const { TextureSystem::destroy(ts); }
-};
-using TextureSystemPtr = std::unique_ptr<TextureSystem, TextureSystemDeleter>;
-
-TextureSystemPtr private_texture_system()
+stochtex::PrivateTextureSystem private_texture_system()
 {
-    TextureSystemPtr ts(TextureSystem::create(false));
+    stochtex::PrivateTextureSystem ts = stochtex::make_private_texture_system();
     ts->attribute("plugin_searchpath", STOCHTEX_PLUGIN_DIR);
     return ts;
 }

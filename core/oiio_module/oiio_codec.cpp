@@ -7,6 +7,7 @@
 // Self-contained: it uses only OIIO and the interface header, never the core (which lives in
 // the executable that loads it), and reports failures as text.
 #include "image/image_codec.h"
+#include "image/private_texture_system.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
@@ -124,8 +125,7 @@ std::string write_through(const std::string& path, const std::string& target, bo
 
 class OiioTextureLookups final : public TextureLookups {
 public:
-    OiioTextureLookups() : system_(OIIO::TextureSystem::create(false)) {}
-    ~OiioTextureLookups() override { OIIO::TextureSystem::destroy(system_); }
+    OiioTextureLookups() : system_(make_private_texture_system()) {}
 
     std::string run(const std::string& path, int size, int threads) override
     {
@@ -157,7 +157,7 @@ public:
     }
 
 private:
-    OIIO::TextureSystem* system_;
+    PrivateTextureSystem system_;
 };
 
 class OiioCodec final : public ImageCodec {

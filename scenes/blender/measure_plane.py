@@ -37,22 +37,9 @@ mat, result, analyse_seconds = s.analyse_onto(plane, args.photo, bake_size=args.
                                               uv_repeats=1.0)
 assert result == {"FINISHED"}, result
 
-# Measurement wiring: the texture straight into an Emission shader.
-nodes, links = mat.node_tree.nodes, mat.node_tree.links
-emission = nodes.new("ShaderNodeEmission")
-emission.inputs["Strength"].default_value = 1.0
-links.new(nodes["stochtex texture"].outputs["Color"], emission.inputs["Color"])
-output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-links.new(emission.outputs[0], output.inputs["Surface"])
-
-# The plane's x in [-1, 1] is u in [0, 1]; its top edge (y = 1) is the map's first row. The
-# view is the top-left 2·SIZE/BAKE_SIZE metres.
-half = args.size / args.bake_size
-bpy.ops.object.camera_add(location=(-1 + half, 1 - half, 5), rotation=(0, 0, 0))
-camera = bpy.context.active_object
-camera.data.type = "ORTHO"
-camera.data.ortho_scale = 2 * half
-scene.camera = camera
+nodes = mat.node_tree.nodes
+s.emission_from(mat, nodes["stochtex texture"].outputs["Color"])
+s.texel_camera(scene, args.size, args.bake_size)  # the top-left 2·SIZE/BAKE_SIZE metres
 
 render_seconds = s.render(scene, os.path.join(args.out, "plane.exr"), "OPEN_EXR")
 with open(os.path.join(args.out, "plane.stex"), "w") as f:

@@ -90,6 +90,29 @@ def analyse_onto(obj, photo, **settings):
     return mat, result, time.monotonic() - start
 
 
+def emission_from(mat, color_socket):
+    """Measurement wiring: `color_socket` straight into an Emission shader (strength 1) as the
+    material's surface, so each pixel is the texture's value (black world, no lights)."""
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 1.0
+    links.new(color_socket, emission.inputs["Color"])
+    output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+    links.new(emission.outputs[0], output.inputs["Surface"])
+
+
+def texel_camera(scene, size, texels):
+    """An orthographic camera over the 2 m plane (x in [-1, 1] is u in [0, 1], its top edge the
+    image's first row) framing its top-left size x size texels of a texels-wide image."""
+    half = size / texels
+    bpy.ops.object.camera_add(location=(-1 + half, 1 - half, 5), rotation=(0, 0, 0))
+    camera = bpy.context.active_object
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = 2 * half
+    scene.camera = camera
+    return camera
+
+
 def render(scene, path, file_format):
     scene.render.image_settings.file_format = file_format
     if file_format == "OPEN_EXR":

@@ -2,6 +2,7 @@
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 
+#include "image/colour_space_names.h"
 #include "image/image_codec.h"
 #include "image/image_output.h"
 #include "image/png_memory.h"
@@ -81,20 +82,41 @@ void convert_srgb(Image& image, bool to_linear)
 }
 #endif
 
+/// v^exponent for v ≥ 0; negative values pass unchanged (OCIO's ExponentTransform "pass_thru",
+/// what OIIO 3.x's g18_rec709 and g22_rec709 use).
+void apply_power(Image& image, double exponent)
+{
+    const float p = float(exponent);
+    for (float& v : image.pixels)
+        if (v > 0) v = std::pow(v, p);
+}
+
 }  // namespace
 
 void convert_colour_space(Image& image, const std::string& from, const std::string& to)
 {
     if (from == to || (is_scene_linear(from) && is_scene_linear(to))) return;
-    const std::string source = is_scene_linear(from) ? "linear" : from;
-    const std::string target = is_scene_linear(to) ? "linear" : to;
+    std::string source = is_scene_linear(from) ? "linear" : oiio_colour_space_name(from);
+    std::string target = is_scene_linear(to) ? "linear" : oiio_colour_space_name(to);
+    // A gamma the linked OIIO has no name for (OIIO 3.x: all but 1.8 and 2.2) is the plain power
+    // it is, applied here on the way to or from linear.
+    const double decode = source.empty() ? encoding_gamma(from) : 0, encode = target.empty() ? encoding_gamma(to) : 0;
+    if (decode) apply_power(image, decode), source = "linear";
+    if (encode) target = "linear";
+    if (source != target) {
 #if OIIO_VERSION < 20500
-    if (image.channels == 3 && closed_form_srgb(source, target)) return convert_srgb(image, source == "sRGB");
+        if (image.channels == 3 && closed_form_srgb(source, target)) {
+            convert_srgb(image, source == "sRGB");
+        } else
 #endif
-    std::string error;
-    if (!codec::oiio_codec("converting colours from '" + from + "' to '" + to + "'")
-             .convert_colour(image.pixels.data(), image.pixel_count(), image.channels, source, target, error))
-        throw Error("cannot convert colours from '" + from + "' to '" + to + "': " + error);
+        {
+            std::string error;
+            if (!codec::oiio_codec("converting colours from '" + from + "' to '" + to + "'")
+                     .convert_colour(image.pixels.data(), image.pixel_count(), image.channels, source, target, error))
+                throw Error("cannot convert colours from '" + from + "' to '" + to + "': " + error);
+        }
+    }
+    if (encode) apply_power(image, 1.0 / encode);
 }
 
 Image read_image_linear(const std::string& path, const ImageReadOptions& options, int min_size, ImageFileInfo* info)

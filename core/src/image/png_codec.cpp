@@ -169,6 +169,46 @@ private:
     Decoded decoded_;
 };
 
+/// The string attributes as uncompressed tEXt chunks (pointing into `header`).
+std::vector<png_text> text_chunks(const ImageHeader& header)
+{
+    std::vector<png_text> texts;
+    texts.reserve(header.attributes.size());
+    for (const auto& [name, value] : header.attributes) {
+        png_text text{};
+        text.compression = PNG_TEXT_COMPRESSION_NONE;
+        text.key = const_cast<char*>(name.c_str());
+        text.text = const_cast<char*>(value.c_str());
+        texts.push_back(text);
+    }
+    return texts;
+}
+
+/// libpng's calls of encode(), after its setjmp. Kept out of line: what the compiler inlines into
+/// the function that calls setjmp may sit in registers that the longjmp restores stale (g++ 16
+/// warned -Wclobbered of std::vector's growth here). A longjmp leaves this frame without
+/// unwinding it, so it creates nothing that needs destroying.
+[[gnu::noinline]] void write_png(png_structp png, png_infop info, Sink& sink, const ImageHeader& header,
+                                 std::vector<png_text>& texts, const std::uint8_t* rows, std::size_t stride, int level)
+{
+    png_set_write_fn(png, &sink, &Sink::write, &Sink::flush);
+    png_set_compression_level(png, level);
+    // OIIO sets zlib's default strategy (libpng's own default with row filters is Z_FILTERED).
+    png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
+    const int colour = header.channels == 1 ? PNG_COLOR_TYPE_GRAY : header.channels == 3 ? PNG_COLOR_TYPE_RGB : -1;
+    if (colour < 0) png_error(png, "the built-in PNG writer takes grey or RGB");
+    png_set_IHDR(png, info, png_uint_32(header.width), png_uint_32(header.height), header.sample == Sample::u16 ? 16 : 8,
+                 colour, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
+    for (const auto& [name, value] : header.attributes)
+        if (name == "oiio:ColorSpace" && value == "sRGB") png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
+    if (!texts.empty()) png_set_text(png, info, texts.data(), int(texts.size()));
+    png_write_info(png, info);
+    if (header.sample == Sample::u16) png_set_swap(png);
+    for (int y = 0; y < header.height; ++y) png_write_row(png, const_cast<png_bytep>(rows + std::size_t(y) * stride));
+    png_write_end(png, info);
+}
+
 /// OIIO 2.4's PNG writer's chunks: IHDR; gAMA, sRGB and cHRM when the colour space is sRGB;
 /// oFFs (0, 0); the string attributes as tEXt ("oiio:ColorSpace" included); the rows; the end.
 std::string encode(Sink& sink, const ImageHeader& header, const std::uint8_t* rows, std::size_t stride, int level)
@@ -184,31 +224,9 @@ std::string encode(Sink& sink, const ImageHeader& header, const std::uint8_t* ro
     } destroy{&png, &info};
     if (!info) return "out of memory";
     // Every C++ object the longjmp below may skip is built before the setjmp.
-    std::vector<png_text> texts;
+    std::vector<png_text> texts = text_chunks(header);
     if (setjmp(png_jmpbuf(png))) return errors.message.empty() ? std::string("PNG encoding failed") : errors.message;
-    png_set_write_fn(png, &sink, &Sink::write, &Sink::flush);
-    png_set_compression_level(png, level);
-    // OIIO sets zlib's default strategy (libpng's own default with row filters is Z_FILTERED).
-    png_set_compression_strategy(png, Z_DEFAULT_STRATEGY);
-    const int colour = header.channels == 1 ? PNG_COLOR_TYPE_GRAY : header.channels == 3 ? PNG_COLOR_TYPE_RGB : -1;
-    if (colour < 0) png_error(png, "the built-in PNG writer takes grey or RGB");
-    png_set_IHDR(png, info, png_uint_32(header.width), png_uint_32(header.height), header.sample == Sample::u16 ? 16 : 8,
-                 colour, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_oFFs(png, info, 0, 0, PNG_OFFSET_PIXEL);
-    texts.reserve(header.attributes.size());
-    for (const auto& [name, value] : header.attributes) {
-        if (name == "oiio:ColorSpace" && value == "sRGB") png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_ABSOLUTE);
-        png_text text{};
-        text.compression = PNG_TEXT_COMPRESSION_NONE;
-        text.key = const_cast<char*>(name.c_str());
-        text.text = const_cast<char*>(value.c_str());
-        texts.push_back(text);
-    }
-    if (!texts.empty()) png_set_text(png, info, texts.data(), int(texts.size()));
-    png_write_info(png, info);
-    if (header.sample == Sample::u16) png_set_swap(png);
-    for (int y = 0; y < header.height; ++y) png_write_row(png, const_cast<png_bytep>(rows + std::size_t(y) * stride));
-    png_write_end(png, info);
+    write_png(png, info, sink, header, texts, rows, stride, level);
     return {};
 }
 

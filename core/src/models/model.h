@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <typeinfo>
 #include <vector>
 
@@ -181,9 +182,12 @@ const std::vector<const Model*>& registered_models();
 /// The named model, or null.
 const Model* find_model(const std::string& name);
 /// The named model; otherwise fails with "<source>: <path>: unknown model 'x' (known models: …)".
-const Model& model_named(const std::string& name, const std::string& source, const std::string& path = "model");
+// The error context is taken as string_view: a reference-returning function given temporary
+// std::strings looks to g++ 13+ like it might return one of them (-Wdangling-reference), and the
+// context is only read on failure.
+const Model& model_named(const std::string& name, std::string_view source, std::string_view path = "model");
 /// The model of a description (model_named(description.model, source)).
-inline const Model& model_of(const TextureDescription& description, const std::string& source = "texture description")
+inline const Model& model_of(const TextureDescription& description, std::string_view source = "texture description")
 {
     return model_named(description.model, source);
 }

@@ -119,10 +119,10 @@ const Model* find_model(const std::string& name)
     return nullptr;
 }
 
-const Model& model_named(const std::string& name, const std::string& source, const std::string& path)
+const Model& model_named(const std::string& name, std::string_view source, std::string_view path)
 {
     if (const Model* model = find_model(name)) return *model;
-    json_fields::fail(source, path, "unknown model '" + name + "' (known models: " + joined(known_models()) + ")");
+    json_fields::fail(std::string(source), std::string(path), "unknown model '" + name + "' (known models: " + joined(known_models()) + ")");
 }
 
 ModelRegistration::ModelRegistration(const Model& model)

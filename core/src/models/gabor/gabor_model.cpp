@@ -41,12 +41,34 @@ constexpr double unit_tolerance = 1e-4;
 // Gabor octaves: frequencies above 1 cycle per exemplar pixel are finer than twice the photo's
 // Nyquist frequency (a description that wants them uses a larger pixels_per_unit); the lower
 // bound keeps the impulse cells' indices finite at any texture coordinate. Bandwidth and
-// impulse count bound the cost of an evaluation.
-const NumberRange frequency_range{1e-6, 1, ""};
-const NumberRange bandwidth_range{1.0 / 16, 16, ""};
-const NumberRange impulse_range{1, 256, ""};
-const NumberRange orientation_range{-90, 90, "degrees"};
-const NumberRange fraction_range{0, 1, ""};
+// impulse count bound the cost of an evaluation. Functions, not globals: the registry builds
+// this model during other files' static initialisation (a test model registering itself), when
+// a global's std::string may not be constructed yet (g++ 16's order crashed there).
+const NumberRange& frequency_range()
+{
+    static const NumberRange range{1e-6, 1, ""};
+    return range;
+}
+const NumberRange& bandwidth_range()
+{
+    static const NumberRange range{1.0 / 16, 16, ""};
+    return range;
+}
+const NumberRange& impulse_range()
+{
+    static const NumberRange range{1, 256, ""};
+    return range;
+}
+const NumberRange& orientation_range()
+{
+    static const NumberRange range{-90, 90, "degrees"};
+    return range;
+}
+const NumberRange& fraction_range()
+{
+    static const NumberRange range{0, 1, ""};
+    return range;
+}
 
 /// One optional per-octave array of the oriented kind: present exactly when the kind is oriented
 /// (checked with the frequencies, which every file has), each value in `range`.
@@ -89,9 +111,9 @@ ParameterSchema<GaborParameters> gabor_schema()
                                              "must be a unit vector (length within " + number_text(unit_tolerance) +
                                                  " of 1), its length is " + number_text(std::sqrt(length2)));
                    });
-    schema.number("bandwidth", &P::bandwidth, bandwidth_range,
+    schema.number("bandwidth", &P::bandwidth, bandwidth_range(),
                   {"1", "", "Kernel bandwidth relative to its frequency, a/F, the same for every octave."});
-    schema.number("impulses_per_kernel", &P::impulses_per_kernel, impulse_range,
+    schema.number("impulses_per_kernel", &P::impulses_per_kernel, impulse_range(),
                   {"16", "impulses", "Mean number of kernels overlapping a point (within the 5 % envelope radius): "
                                     "quality vs cost, which grows linearly with it."});
     schema.numbers("frequencies", &P::frequencies,
@@ -105,7 +127,7 @@ ParameterSchema<GaborParameters> gabor_schema()
                                              "expected 1 to " + std::to_string(max_octaves) + " octaves, got " +
                                                  std::to_string(octaves));
                        for (std::size_t k = 0; k < octaves; ++k)
-                           check_in_range(p.frequencies[k], frequency_range, json_path(path, k), source);
+                           check_in_range(p.frequencies[k], frequency_range(), json_path(path, k), source);
                        // The oriented kind's per-octave arrays: there exactly when the kind is oriented.
                        const std::string parent = path.substr(0, path.rfind('.'));
                        const bool oriented = p.kind == GaborKind::oriented;
@@ -142,10 +164,10 @@ ParameterSchema<GaborParameters> gabor_schema()
                 }
             }
         });
-    per_octave_numbers(schema, "orientations", &P::orientations, orientation_range, "degrees",
+    per_octave_numbers(schema, "orientations", &P::orientations, orientation_range(), "degrees",
                        "Kind oriented only (required there, absent otherwise): per octave, the angle of the oriented "
                        "kernels' frequency ω in the (u, v) plane, from u towards v (ω and −ω are the same noise).");
-    per_octave_numbers(schema, "oriented_fractions", &P::oriented_fractions, fraction_range, "",
+    per_octave_numbers(schema, "oriented_fractions", &P::oriented_fractions, fraction_range(), "",
                        "Kind oriented only (required there, absent otherwise): per octave, the share of the kernels "
                        "that are oriented (the others isotropic): 0 isotropic, 1 all along orientations[k].");
     return schema;
@@ -191,7 +213,7 @@ public:
             if (text == "auto") return text;
             char* end = nullptr;
             const double value = std::strtod(text.c_str(), &end);
-            if (text.empty() || *end != 0 || !(value == 0 || (value >= bandwidth_range.min && value <= bandwidth_range.max)))
+            if (text.empty() || *end != 0 || !(value == 0 || (value >= bandwidth_range().min && value <= bandwidth_range().max)))
                 throw Error("Gabor bandwidth must be 0 (fitted) or in [0.0625, 16], got " + text);
             return value == 0 ? std::string("auto") : text;
         };
