@@ -98,23 +98,10 @@ mount_in() {  # mount_in TARGET MOUNT-ARGUMENTS…
   mount "$@" "$target"
   mounts+=("$target")
 }
-mounted_below() { grep -q " $root/" /proc/mounts; }
 
 ready="$root/.stochtex-lane-ready"
 if [ ! -f "$ready" ] || [ "$(cat "$ready")" != "${packages[*]}" ]; then
-  if [ ! -f "$root/.stochtex-bootstrapped" ]; then
-    # Nothing, or an interrupted debootstrap: start the folder afresh.
-    if mounted_below; then echo "debian13-lane: something is still mounted under $root; not removing it" >&2; exit 1; fi
-    rm -rf --one-file-system "$root"
-    dpkg-query -W -f='${Status}' debootstrap 2>/dev/null | grep -q "install ok installed" ||
-      { DEBIAN_FRONTEND=noninteractive apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap; }
-    echo "debian13-lane: debootstrap trixie into $root"
-    debootstrap --variant=minbase trixie "$root" >"$root.debootstrap.log" 2>&1 ||
-      { tail -20 "$root.debootstrap.log" >&2; exit 1; }
-    ln -sf ../proc/self/mounts "$root/etc/mtab"  # Blender lists the mounted file systems
-    touch "$root/.stochtex-bootstrapped"
-    echo "debian13-lane: debootstrap done after $((SECONDS - start)) s"
-  fi
+  bash "$(dirname "$0")/debian13-bootstrap.sh" "$root"  # nothing, or an interrupted debootstrap
   cp /etc/resolv.conf "$root/etc/resolv.conf"
   # No services start inside the folder (packages such as dbus would try).
   printf '#!/bin/sh\nexit 101\n' >"$root/usr/sbin/policy-rc.d" && chmod +x "$root/usr/sbin/policy-rc.d"
