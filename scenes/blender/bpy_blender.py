@@ -59,7 +59,13 @@ def main(argv):
     if script is None:
         return usage_error(argv, "no --python SCRIPT")
 
-    import bpy  # noqa: F401  (loads Blender before the script, as the binary does)
+    import bpy  # loads Blender before the script, as the binary does
+    # The binary's Python also sees the modules Blender bundles (bpy/<version>/python/…/site-packages:
+    # oslquery, which Cycles' Script node compile imports, MaterialX); the module's does not.
+    bundled = os.path.join(bpy.utils.resource_path("LOCAL"), "python", "lib",
+                           "python%d.%d" % sys.version_info[:2], "site-packages")
+    if os.path.isdir(bundled) and bundled not in sys.path:
+        sys.path.append(bundled)
     sys.argv = [sys.argv[0]] + head + ["--"] + tail  # the script looks after "--", as in Blender
     try:
         runpy.run_path(script, run_name="__main__")
