@@ -14,3 +14,5 @@ if [ "${STOCHTEX_SANITIZER_LANE:-ON}" != OFF ]; then bash scripts/sanitizer-lane
 # 4.3 installing the add-on as an extension, in a debootstrap folder (scripts/debian13-lane.sh;
 # ≈ 8–9 min from nothing on 2 idle cores, ≈ 2 min when the folder is reused; README). STOCHTEX_SKIP_DEBIAN13=1 skips it.
 bash scripts/debian13-lane.sh
+# bpy lane (issue 34): the official Blender 4.5 LTS and 5.2 (PyPI's bpy, cached in /var/cache/stochtex/bpy) run the add-on's scene tests and Cycles' own OSL (scripts/bpy-lane.sh; docs/blender.md). STOCHTEX_SKIP_BPY=1 skips it.
+bash scripts/bpy-lane.sh
