@@ -16,3 +16,5 @@ if [ "${STOCHTEX_SANITIZER_LANE:-ON}" != OFF ]; then bash scripts/sanitizer-lane
 bash scripts/debian13-lane.sh
 # Debian sid lane (issue 31): g++ 16, OIIO 3.1, Blender 5.2 (scripts/sid-lane.sh). STOCHTEX_SKIP_SID=1 skips it.
 bash scripts/sid-lane.sh
+# bpy lane (issue 34): the official Blender 4.5 LTS and 5.2 (PyPI's bpy, cached in /var/cache/stochtex/bpy) run the add-on's scene tests and Cycles' own OSL (scripts/bpy-lane.sh; docs/blender.md). STOCHTEX_SKIP_BPY=1 skips it.
+bash scripts/bpy-lane.sh

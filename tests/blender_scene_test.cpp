@@ -168,6 +168,42 @@ TEST(BlenderScene, MeasurementPlaneMatchesCore)
     }
 }
 
+// The add-on's OSL route (no bake: its generated shader in a Script node, Cycles on the CPU with
+// OSL), on the measurement plane: the render is the core's texture itself, not a periodic bake,
+// so it must equal the core's render of the same region. The plane's UVs are texture units
+// (uv_repeats 1, Scale 1), the camera frames u ∈ [0, s], UV v ∈ [1 − s, 1] with s = size /
+// bake size, and the shader shows (u, −v): the core's region from v = −1, rows not flipped.
+// One sample per pixel (an OSL render is slow): the 0.01-px pixel filter moves it off the pixel
+// centre by ≤ 0.005 px, hence the tolerance (measured: docs/blender.md).
+TEST(BlenderScene, OslRouteMatchesCore)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    constexpr int osl_size = 128, osl_bake_size = 512;
+    const std::string out = test::temp_dir("blender-osl-route");
+    const auto result = run_blender("measure_plane.py", out, "--route OSL --size " + std::to_string(osl_size) + " --bake-size " +
+                                                             std::to_string(osl_bake_size) + " --samples 1");
+    ASSERT_EQ(result.status, 0) << result.output;
+    const auto report = read_json(out + "/plane.json");
+    if (!report["cycles_osl"].get<bool>()) GTEST_SKIP() << "this Blender has no OSL (bpy.app.build_options.cycles_osl; Debian's builds)";
+    EXPECT_TRUE(report["shading_system_osl"].get<bool>()) << "the route must switch Cycles to OSL";
+    const auto [major, minor] = blender_version();
+    std::printf("Blender %d.%d OSL route: analyse %.2f s, Cycles OSL render %dx%d at 1 sample %.2f s\n", major, minor,
+                report["analyse_and_bake_seconds"].get<double>(), osl_size, osl_size, report["render_seconds"].get<double>());
+
+    const Image blender = read_image_linear(out + "/plane.exr");
+    ASSERT_EQ(blender.width, osl_size);
+    const TextureDescription description = read_stex(out + "/plane.stex");
+    RenderSettings settings;
+    settings.width = settings.height = osl_size;
+    settings.units_per_pixel = 1.0 / osl_bake_size;
+    settings.origin_v = -1.0;
+    const double rms = rms_difference_over_sigma(blender, render(*make_texture(description), settings));
+    std::printf("OSL route vs core: RMS difference %.2e sigma\n", rms);
+    // A flipped, shifted or wrongly scaled region is ≥ 0.5 σ; the sample's offset from the pixel
+    // centre, a few thousandths.
+    EXPECT_LT(rms, 0.02);
+}
+
 TEST(BlenderScene, AddonFailuresAreReportsAndLeaveNothing)
 {
     if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";

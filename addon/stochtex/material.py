@@ -112,7 +112,8 @@ def build_material(material, settings, name, image=None, period_m=1.0, osl_text=
         node = nodes.new("ShaderNodeScript")
         node.mode = "INTERNAL"
         node.script = osl_text
-        # Sockets exist once Blender has compiled the script; the tiling shader has no Solid.
+        compile_script(node)
+        # The tiling shader has no Solid.
         if "Solid" in node.inputs:
             node.inputs["Solid"].default_value = 1 if settings.solid else 0
         if "Scale" in node.inputs:
@@ -139,6 +140,23 @@ def build_material(material, settings, name, image=None, period_m=1.0, osl_text=
     if "Color" in node.outputs:
         links.new(node.outputs["Color"], bsdf.inputs["Base Color"])
     return node
+
+
+def compile_script(node):
+    """Compiles a Script node's shader and makes its sockets, as its Update button does.
+
+    Blender compiles a script when the node editor asks (the button, or editing the text
+    there); a script node made from Python, from an operator or in the background, has no
+    sockets until then. Cycles' own compile is asked directly; its errors become a StexError."""
+    try:
+        import cycles.osl  # Cycles' add-on: present wherever Cycles is
+    except ImportError:
+        raise stex_cli.StexError("Cycles is not available: the OSL route needs it") from None
+    errors = []
+    ok = cycles.osl.update_script_node(node, lambda kind, text: errors.append(text) if "ERROR" in kind else None)
+    if not ok or "Color" not in node.outputs:
+        raise stex_cli.StexError("the OSL shader does not compile (%s); the console shows the compiler's messages"
+                                 % ("; ".join(errors) or "no Color output"))
 
 
 def bake_positions(context, obj, mat, size, path):

@@ -52,13 +52,19 @@ def default_cube_material():
     return cube.active_material
 
 
+def node_material(data_block):
+    """Gives a material or world its node tree: Blender 5.0 deprecated use_nodes (every material
+    and world has nodes), so it is set only where it still means something."""
+    if bpy.app.version < (5, 0, 0):
+        data_block.use_nodes = True
+
+
 def empty_scene():
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
     scene = bpy.context.scene
     world = bpy.data.worlds.new("black")
-    if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: every world has nodes
-        world.use_nodes = True
+    node_material(world)
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     scene.world = world
     return scene
