@@ -55,9 +55,10 @@ std::string blender_environment(const std::string& out)
 }
 
 /// Runs scenes/blender/<script> in a headless Blender (blender_environment()).
-test::CommandResult run_blender(const std::string& script, const std::string& out, const std::string& extra = "")
+test::CommandResult run_blender(const std::string& script, const std::string& out, const std::string& extra = "",
+                                const std::string& environment = "")
 {
-    const std::string line = blender_environment(out) +
+    const std::string line = blender_environment(out) + environment +
                              " timeout 300 blender -b --factory-startup --python " +
                              test::shell_quote(std::string(STOCHTEX_SOURCE_DIR) + "/scenes/blender/" + script) +
                              " -- --addon " + test::shell_quote(STOCHTEX_ADDON_ZIP) + " --photo " +
@@ -322,6 +323,52 @@ TEST(BlenderScene, LiveStexRendersThroughThePlugin)
     } else {
         EXPECT_GE(made[0], tiles[0]) << "Blender < 5.2 reads the whole of level 0";
     }
+}
+
+// The add-on's Live route (docs/blender.md, "Live"): the analyse operator writes the .stex beside
+// the saved blend with an image block, and the material gives Cycles its own output reading that
+// file through the OIIO plugin (EEVEE keeps the baked map). Blender starts with no OIIO variable:
+// the add-on must put the plugin (found through $STOCHTEX_PLUGIN_PATH) on OIIO's search path itself.
+// Texel for texel against the plugin's level 0, then again after a tweak rewrote the live file.
+TEST(BlenderScene, LiveRouteRendersThroughThePlugin)
+{
+    if (!have_blender()) GTEST_SKIP() << "blender not on PATH (scripts/install-deps.sh --with-blender)";
+    const auto [major, minor] = blender_version();
+    const int live_size = major * 100 + minor >= 502 ? 32768 : 4096;  // the add-on's defaults (stex_cli.live_size)
+    constexpr int size = 128, preview_size = 256;
+    const std::string out = test::temp_dir("blender-live-route");
+    const std::string arguments = "--route LIVE --size " + std::to_string(size) + " --bake-size " +
+                                  std::to_string(preview_size) + " --live-size " + std::to_string(live_size) + " --samples 4";
+    const auto result = run_blender("measure_plane.py", out, arguments,
+                                    " env -u OPENIMAGEIO_PLUGIN_PATH -u OIIO_LIBRARY_PATH STOCHTEX_PLUGIN_PATH=" +
+                                        test::shell_quote(STOCHTEX_PLUGIN_DIR));
+    ASSERT_EQ(result.status, 0) << result.output;
+    const auto report = read_json(out + "/plane.json");
+    EXPECT_EQ(report["cycles_output"], "stochtex live output");
+    EXPECT_NE(report["eevee_output"], "stochtex live output");
+    EXPECT_NE(report["eevee_surface"], "stochtex live BSDF") << "EEVEE must keep the baked map";
+    EXPECT_EQ(report["image_size"], nlohmann::json::array({preview_size, preview_size})) << "the baked map EEVEE shows";
+    EXPECT_EQ(report["live_image_filepath"], "//stochtex/concrete_512.stex") << "the live file goes beside the blend";
+
+    for (const char* name : {"live", "tweaked"}) {
+        const TextureDescription description = read_stex(out + "/" + name + ".stex");
+        ASSERT_TRUE(description.image.has_value()) << name;
+        EXPECT_EQ(description.image->width, live_size) << name;
+        EXPECT_EQ(description.seed, std::string(name) == "tweaked" ? 2u : 1u) << name;
+        const Image blender = read_image_linear(out + "/" + (std::string(name) == "live" ? "plane" : name) + ".exr");
+        ASSERT_EQ(blender.width, size);
+        // The live file has the baked map's texel density: the plane's UV unit holds preview_size
+        // of its texels, its top edge the file's row live_size - preview_size (measure_plane.py).
+        const MipImage image(description, *description.image, std::string(name) + ".stex");
+        Image expected(size, size, 3);
+        image.fill(0, 0, live_size - preview_size, size, size, expected.pixels.data());
+        const double rms = rms_difference_over_sigma(blender, expected);
+        std::printf("Blender %d.%d, live route, %s (seed %u), %d² of a %d² .stex: RMS %.4f sigma\n", major, minor, name,
+                    description.seed, size, live_size, rms);
+        EXPECT_LT(rms, 0.01) << name;  // the baked route's tolerance (MeasurementPlaneMatchesCore)
+    }
+    // The tweak made another instance: a render that still showed the first file would fail above.
+    EXPECT_GT(rms_difference_over_sigma(read_image_linear(out + "/tweaked.exr"), read_image_linear(out + "/plane.exr")), 0.3);
 }
 
 }  // namespace

@@ -30,6 +30,12 @@ def register():
     for cls in _classes:
         bpy.utils.register_class(cls)
     properties.register()
+    # A blend opened with a live material renders at once: OIIO finds the plugin when Cycles
+    # first meets the .stex. Without a plugin only the Live route needs one, and says so.
+    try:
+        operators.use_plugin(bpy.context)
+    except stex_cli.StexError:
+        pass
 
 
 def unregister():

@@ -90,9 +90,11 @@ def _texture_input(nodes, settings, x):
     return coordinates.outputs[socket]
 
 
-def build_material(material, settings, name, image=None, period_m=1.0, osl_text=None, unit_size_m=1.0):
+def build_material(material, settings, name, image=None, period=1.0, osl_text=None, unit_size_m=1.0, live=None):
     """(Re)builds `material`'s nodes: coordinates → texture → Principled Base Color → output.
 
+    period: the baked map's period in the coordinates' units (_period). live: (the .stex image,
+    its period) for the Live route, whose texture feeds a Cycles-only output (_live_output).
     Everything else in the material is left alone, except nodes this add-on made before
     (named "stochtex ..."), which are replaced.
     """
@@ -122,24 +124,70 @@ def build_material(material, settings, name, image=None, period_m=1.0, osl_text=
         if "Vector" in node.inputs:
             links.new(coordinates, node.inputs["Vector"])
     else:
-        node = nodes.new("ShaderNodeGroup")
-        node.node_tree = baked_group(name, image, _coordinates(settings) != "UV")
-        links.new(coordinates, node.inputs["Vector"])
-        # Object coordinates are metres; UV and generated coordinates hold `repeats` periods per unit.
-        if settings.route == "SOLID":
-            period = 1.0  # the map covers the UV square once
-        elif _coordinates(settings) == "OBJECT":
-            period = period_m
-        else:
-            period = 1.0 / settings.uv_repeats
-        node.inputs["Period"].default_value = period
+        node = _texture_node(nodes, links, name, image, settings, coordinates, period)
     node.name = "stochtex texture"
     node.label = "stochtex " + name
     node.location = (x, bsdf.location.y)
     coordinates.node.location = (x - 240, bsdf.location.y)
     if "Color" in node.outputs:
         links.new(node.outputs["Color"], bsdf.inputs["Base Color"])
+    if live is not None:
+        _live_output(material, bsdf, _texture_node(nodes, links, name + " live", live[0], settings, coordinates, live[1]))
     return node
+
+
+def map_period(settings, texels, texture_units, unit_size_m, bake_size):
+    """The period of a map of `texels` texels covering `texture_units` texture units, in the
+    units of the material's coordinates: metres for object coordinates; for UV and generated
+    coordinates a baked map of bake_size texels spans 1 / repeats units, and a larger map (the
+    Live route's .stex) spans proportionally more at the same texel density. A solid map
+    covers the UV square once."""
+    if settings.route == "SOLID":
+        return 1.0
+    if _coordinates(settings) == "OBJECT":
+        return texture_units * unit_size_m
+    return texels / (bake_size * settings.uv_repeats)
+
+
+def _texture_node(nodes, links, name, image, settings, coordinates, period_in_units):
+    node = nodes.new("ShaderNodeGroup")
+    node.node_tree = baked_group(name, image, _coordinates(settings) != "UV")
+    links.new(coordinates, node.inputs["Vector"])
+    node.inputs["Period"].default_value = period_in_units
+    return node
+
+
+def _live_output(material, bsdf, texture):
+    """The Live route's Cycles-only branch: a copy of the Principled BSDF (same inputs and
+    links) whose Base Color is the live .stex, into a Material Output targeted at Cycles. An
+    output with a target outranks the "All" one for that renderer, so Cycles renders the .stex
+    through the OIIO plugin while EEVEE and the viewport — whose image reader knows no plugins —
+    keep the baked map of the material's own output."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture.name = "stochtex live texture"
+    texture.label = texture.node_tree.name
+    live_bsdf = nodes.new("ShaderNodeBsdfPrincipled")
+    live_bsdf.name = live_bsdf.label = "stochtex live BSDF"
+    for attribute in ("distribution", "subsurface_method"):
+        setattr(live_bsdf, attribute, getattr(bsdf, attribute))
+    for socket, target in zip(bsdf.inputs, live_bsdf.inputs):  # one node type: the same sockets
+        if socket.is_linked:
+            links.new(socket.links[0].from_socket, target)
+        elif hasattr(socket, "default_value"):
+            target.default_value = socket.default_value
+    links.new(texture.outputs["Color"], live_bsdf.inputs["Base Color"])
+    output = nodes.new("ShaderNodeOutputMaterial")
+    output.name = output.label = "stochtex live output"
+    output.target = "CYCLES"
+    links.new(live_bsdf.outputs[0], output.inputs["Surface"])
+    own = next((n for n in nodes if n.type == "OUTPUT_MATERIAL" and n.is_active_output and n != output), None)
+    if own is not None:  # the material's displacement and volume apply in Cycles too
+        for socket_name in ("Volume", "Displacement"):
+            if own.inputs[socket_name].is_linked:
+                links.new(own.inputs[socket_name].links[0].from_socket, output.inputs[socket_name])
+    texture.location = (bsdf.location.x - 300, bsdf.location.y - 700)
+    live_bsdf.location = (bsdf.location.x, bsdf.location.y - 700)
+    output.location = (bsdf.location.x + 300, bsdf.location.y - 700)
 
 
 def compile_script(node):

@@ -12,7 +12,7 @@ import shutil
 
 import bpy
 
-from . import material, stex_cli
+from . import material, properties, stex_cli
 from .properties import has_osl, registry
 
 
@@ -182,6 +182,17 @@ class _StexPipeline:
         return {"FINISHED"}
 
 
+def use_plugin(context):
+    """Puts the stochtex OIIO plugin's folder (stex_cli.find_plugin) on OIIO's search path in this
+    process, so that Cycles reads a live .stex; raises StexError where there is none."""
+    preferences = _preferences(context)
+    try:
+        executable = _executable(context)
+    except stex_cli.StexError:
+        executable = ""  # the plugin can still be named by the preference or the environment
+    stex_cli.add_plugin_path(stex_cli.find_plugin(preferences.plugin_path if preferences else "", executable))
+
+
 def _render_steps(self, settings, stex_path, name):
     """The stex runs that turn a .stex file into what the chosen route needs."""
     if settings.route == "OSL":
@@ -203,7 +214,31 @@ def _render_steps(self, settings, stex_path, name):
         return [("surface positions", lambda: material.bake_positions(bpy.context, obj, self.mat, settings.bake_size,
                                                                       positions)),
                 ("solid bake", solid_bake)]
+    if settings.route == "LIVE":
+        use_plugin(bpy.context)  # before any work: without the plugin Cycles cannot read the live file
     return [("bake", stex_cli.bake_args(stex_path, self.work.file(name + ".exr"), settings.bake_size))]
+
+
+def _store_live(name, stex_text_content, size):
+    """The live file: the .stex with a size² image block, beside a saved blend (as the baked maps
+    are) or in Blender's temporary folder, replaced atomically, and its image data-block (reloaded
+    so that Cycles reads the new texture after a tweak). Returns the image and whether the file
+    lives only as long as this session."""
+    folder = bpy.path.abspath("//stochtex") if bpy.data.filepath else os.path.join(bpy.app.tempdir, "stochtex")
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, name + ".stex")
+    stex_cli.write_atomically(path, stex_cli.live_stex(stex_text_content, size, name))
+    image = bpy.data.images.get(name + ".stex")
+    if image is None or bpy.path.abspath(image.filepath) != path:
+        # Blender's own reader logs "unknown file-format": it knows no OIIO plugins (docs/blender.md).
+        image = bpy.data.images.load(path, check_existing=False)
+        image.name = name + ".stex"
+        if bpy.data.filepath:
+            image.filepath = "//stochtex/" + name + ".stex"
+    else:
+        image.reload()
+    material.set_linear(image)  # the plugin's texels are linear Rec.709, as the baked maps' are
+    return image, not bpy.data.filepath
 
 
 def _finish_render(self, context, mat, settings, name, stex_text_content):
@@ -229,8 +264,19 @@ def _finish_render(self, context, mat, settings, name, stex_text_content):
         name = name + "." + bpy.path.clean_name(context.active_object.name)  # one map per object
     old = bpy.data.images.get(name + ".exr")
     image = _store_image(name, exr)
-    period_m = stex_cli.period_units(data, settings.bake_size) * unit_size_m
-    material.build_material(mat, settings, name, image=image, period_m=period_m)
+    period = material.map_period(settings, settings.bake_size, stex_cli.period_units(data, settings.bake_size),
+                                 unit_size_m, settings.bake_size)
+    live = None
+    if settings.route == "LIVE":
+        size = stex_cli.live_size(settings.live_size, properties.texture_cache_streams(context.scene))
+        live_image, temporary = _store_live(name, stex_text_content, size)
+        live_units = stex_cli.period_units(data, size, stex_cli.image_scale(data))
+        live = (live_image, material.map_period(settings, size * stex_cli.image_scale(data), live_units, unit_size_m,
+                                                settings.bake_size))
+        if temporary:
+            self.report({"WARNING"}, "stochtex: the live file is in Blender's temporary folder until the blend is "
+                                     "saved; save it, then Apply Tweaks, to keep it beside the blend")
+    material.build_material(mat, settings, name, image=image, period=period, live=live)
     if old is not None and old.users == 0:
         bpy.data.images.remove(old)
     image.name = name + ".exr"

@@ -13,14 +13,18 @@ def has_osl():
 
 
 _BAKED = ("BAKED", "Baked map", "The core bakes a tiled, MIP-mapped EXR; an Image Texture node reads it "
-          "(Cycles and EEVEE, CPU and GPU)")
+          "(Cycles and EEVEE, CPU and GPU)", 0)
 _SOLID = ("SOLID", "Solid map", "The solid (3D) texture baked onto the active object's UV map: continuous "
-          "across sharp edges and UV seams (Cycles and EEVEE, CPU and GPU; one map per object)")
+          "across sharp edges and UV seams (Cycles and EEVEE, CPU and GPU; one map per object)", 1)
+_LIVE = ("LIVE", "Live .stex", "Cycles reads the procedural texture itself through the stochtex OIIO plugin, at any "
+         "resolution, no bake (Blender 5.2+ streams only the tiles a view needs); EEVEE and the viewport show a "
+         "baked map of Bake size", 3)
 _OSL = ("OSL", "OSL shader", "The texture evaluated per shading point by a generated OSL shader "
-        "(Cycles CPU with Open Shading Language on)")
+        "(Cycles CPU with Open Shading Language on)", 2)
 # Blender keeps only pointers to a dynamic enum's strings: the lists must outlive the callback.
-_ROUTES_WITHOUT_OSL = [_BAKED, _SOLID]
-_ROUTES_WITH_OSL = [_BAKED, _SOLID, _OSL]
+# A blend stores a dynamic enum's number, not its name: each route keeps its number for good.
+_ROUTES_WITHOUT_OSL = [_BAKED, _SOLID, _LIVE]
+_ROUTES_WITH_OSL = [_BAKED, _SOLID, _LIVE, _OSL]
 
 
 # The models come from the core's registry (`stex models --json`), asked once per session.
@@ -50,6 +54,11 @@ def _models(self, context):
     return _models_cache
 
 
+def texture_cache_streams(scene):
+    """Cycles 5.2+ with its texture cache on reads a tiled, MIP-mapped file tile by tile."""
+    return bpy.app.version >= (5, 2, 0) and bool(getattr(scene.render, "use_texture_cache", False))
+
+
 def _routes(self, context):
     return _ROUTES_WITH_OSL if has_osl() else _ROUTES_WITHOUT_OSL
 
@@ -60,8 +69,14 @@ class StochtexPreferences(bpy.types.AddonPreferences):
     stex_path: StringProperty(name="stex executable", subtype="FILE_PATH",
                               description="Path of the stex tool; empty: $STOCHTEX_STEX, then PATH")
 
+    plugin_path: StringProperty(name="OIIO plugin folder", subtype="DIR_PATH",
+                                description="Folder holding stex.imageio.so built against this Blender's "
+                                            "OpenImageIO, for the Live route; empty: $STOCHTEX_PLUGIN_PATH, then "
+                                            "beside the stex tool")
+
     def draw(self, context):
         self.layout.prop(self, "stex_path")
+        self.layout.prop(self, "plugin_path")
 
 
 class StochtexSettings(bpy.types.PropertyGroup):
@@ -109,7 +124,12 @@ class StochtexSettings(bpy.types.PropertyGroup):
                         description="OSL route: the solid (3D) texture, continuous across sharp edges")
     uv_repeats: FloatProperty(name="Repeats", default=1.0, min=1e-3, description="Baked periods per UV unit")
     bake_size: IntProperty(name="Bake size", default=1024, min=64, max=16384,
-                           description="Texels per side of the baked map (one seamless period)")
+                           description="Texels per side of the baked map (one seamless period); the Live "
+                                       "route's map for EEVEE and the viewport, and its texel density")
+    live_size: IntProperty(name="Live size", default=0, min=0, max=32768,
+                           description="Live route: level-0 texels per side of the .stex Cycles reads (one "
+                                       "seamless period, at Bake size's texel density). 0: 32768 where Cycles "
+                                       "streams tiles (5.2+), 4096 where it reads the whole image (before 5.2)")
 
 
 classes = [StochtexPreferences, StochtexSettings]

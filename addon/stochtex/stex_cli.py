@@ -11,6 +11,7 @@ error message, not a lost scene. The CLI's option names are already a stable pub
 (cli/commands.h); `stex --progress-lines` gives machine-readable progress.
 """
 
+import glob
 import json
 import re
 import os
@@ -280,3 +281,86 @@ class WorkDir:
 
     def remove(self):
         shutil.rmtree(self.path, ignore_errors=True)
+
+
+# ---- The live route: Cycles reads the .stex itself through the OIIO plugin ----------------------
+
+PLUGIN_FILE = "stex.imageio.so"
+# The largest square level 0 the format allows (width × height ≤ 2^30, docs/limits.md): a host that
+# streams tiles (Cycles 5.2's texture cache) pays only for the tiles a view needs, so the period
+# may as well be as long as possible.
+LIVE_SIZE_STREAMED = 32768
+# A host that reads level 0 whole (Blender before 5.2) holds it in memory: 4096² RGB floats are
+# 192 MB, made in 1–2 s.
+LIVE_SIZE_WHOLE = 4096
+
+
+def live_size(setting, streams):
+    """Level-0 texels per side of the live file: the panel's size, or for 0 the host's default
+    (streams: Cycles reads only the tiles a view needs)."""
+    if setting:
+        return int(setting)
+    return LIVE_SIZE_STREAMED if streams else LIVE_SIZE_WHOLE
+
+
+def live_stex(text, size, name="texture"):
+    """The .stex text with an image block declaring a size × size level 0 (its other keys, tile
+    size and scale, kept): what the OIIO plugin presents to Cycles."""
+    data = parse_stex(text, name)
+    image = dict(data.get("image") or {})
+    image["width"] = image["height"] = int(size)
+    data["image"] = image
+    return json.dumps(data, indent=2) + "\n"
+
+
+def image_scale(data):
+    """Photo pixels per level-0 texel of the plugin's image (the image block's scale, default 1)."""
+    return float((data.get("image") or {}).get("scale", 1.0))
+
+
+def find_plugin(preference="", stex_path=""):
+    """The folder holding the stochtex OIIO plugin: the add-on preference, $STOCHTEX_PLUGIN_PATH,
+    then beside the stex tool (an install's lib/, or a build tree's plugins/)."""
+    for candidate in (preference, os.environ.get("STOCHTEX_PLUGIN_PATH", "")):
+        if candidate:
+            folder = os.path.abspath(os.path.expanduser(candidate))
+            if os.path.isfile(os.path.join(folder, PLUGIN_FILE)):
+                return folder
+            raise StexError("the stochtex OIIO plugin (%s) is not in '%s' (add-on preferences or "
+                            "$STOCHTEX_PLUGIN_PATH)" % (PLUGIN_FILE, candidate))
+    if stex_path:
+        prefix = os.path.dirname(os.path.dirname(os.path.realpath(stex_path)))
+        for folder in [os.path.join(prefix, "lib")] + sorted(glob.glob(os.path.join(prefix, "lib", "*-linux-gnu"))) + \
+                [os.path.join(prefix, "lib64"), os.path.join(prefix, "plugins")]:
+            if os.path.isfile(os.path.join(folder, PLUGIN_FILE)):
+                return folder
+    raise StexError("the live route needs the stochtex OIIO plugin (%s) built against this Blender's "
+                    "OpenImageIO: set its folder in the add-on preferences or $STOCHTEX_PLUGIN_PATH "
+                    "(docs/blender.md, Live)" % PLUGIN_FILE)
+
+
+def add_plugin_path(folder, environ=None):
+    """Puts `folder` first on OIIO's plugin search path, under both names OIIO reads: OIIO 3.x's
+    OPENIMAGEIO_PLUGIN_PATH and 2.x's OIIO_LIBRARY_PATH. OIIO reads them each time it looks
+    for a reader it does not know yet, so setting them in Blender's process before Cycles
+    first meets a .stex is enough."""
+    environ = os.environ if environ is None else environ
+    for variable in ("OPENIMAGEIO_PLUGIN_PATH", "OIIO_LIBRARY_PATH"):
+        paths = [p for p in environ.get(variable, "").split(os.pathsep) if p]
+        if folder not in paths:
+            environ[variable] = os.pathsep.join([folder] + paths)
+
+
+def write_atomically(path, text):
+    """Writes `path` through a temporary file beside it: a reader (Cycles rendering while the
+    artist applies a tweak) sees the old file or the new one, never half of one."""
+    folder = os.path.dirname(path) or "."
+    handle, temporary = tempfile.mkstemp(prefix=".stochtex-", dir=folder)
+    try:
+        with os.fdopen(handle, "w") as out:
+            out.write(text)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        raise

@@ -69,6 +69,9 @@ def draw_settings(layout, mat):
         box.prop(settings, "solid")
     else:
         box.prop(settings, "bake_size")
+    if settings.route == "LIVE":
+        box.prop(settings, "live_size")
+        box.label(text="Cycles renders the .stex; EEVEE the baked map", icon="INFO")
 
     box = layout.box()
     box.label(text="3. Tweak", icon="MODIFIER")

@@ -96,14 +96,15 @@ def analyse_onto(obj, photo, **settings):
     return mat, result, time.monotonic() - start
 
 
-def emission_from(mat, color_socket):
+def emission_from(mat, color_socket, output=None):
     """Measurement wiring: `color_socket` straight into an Emission shader (strength 1) as the
-    material's surface, so each pixel is the texture's value (black world, no lights)."""
+    surface of `output` (default: the material's first output), so each pixel is the texture's
+    value (black world, no lights)."""
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     emission = nodes.new("ShaderNodeEmission")
     emission.inputs["Strength"].default_value = 1.0
     links.new(color_socket, emission.inputs["Color"])
-    output = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+    output = output or next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
     links.new(emission.outputs[0], output.inputs["Surface"])
 
 

@@ -217,6 +217,58 @@ class PureTest(unittest.TestCase):
     def test_period(self):
         self.assertEqual(stex_cli.period_units({"scale": {"pixels_per_unit": 512}}, 1024), 2.0)
 
+    def test_live_size_defaults_follow_the_host(self):
+        self.assertEqual(stex_cli.live_size(0, streams=True), 32768)
+        self.assertEqual(stex_cli.live_size(0, streams=False), 4096)
+        self.assertEqual(stex_cli.live_size(2048, streams=True), 2048)
+
+    def test_live_stex_sets_the_image_block_and_keeps_the_rest(self):
+        text = json.dumps({"format": "stex", "seed": 4, "image": {"tile_width": 32, "scale": 2}})
+        data = json.loads(stex_cli.live_stex(text, 8192))
+        self.assertEqual(data["image"], {"tile_width": 32, "scale": 2, "width": 8192, "height": 8192})
+        self.assertEqual(data["seed"], 4)
+        self.assertEqual(stex_cli.image_scale(data), 2.0)
+        self.assertEqual(json.loads(stex_cli.live_stex('{"format": "stex"}', 64))["image"], {"width": 64, "height": 64})
+        self.assertEqual(stex_cli.image_scale({}), 1.0)
+
+    def test_find_plugin_and_the_search_path(self):
+        folder = tempfile.mkdtemp(prefix="stochtex-plugin-test-")
+        try:
+            with self.assertRaises(stex_cli.StexError) as caught:  # a preference naming a folder without it
+                stex_cli.find_plugin(folder)
+            self.assertIn(folder, str(caught.exception))
+            # Beside an installed stex: PREFIX/bin/stex and PREFIX/lib/stex.imageio.so.
+            os.makedirs(os.path.join(folder, "bin"))
+            os.makedirs(os.path.join(folder, "lib"))
+            open(os.path.join(folder, "lib", stex_cli.PLUGIN_FILE), "w").close()
+            saved = os.environ.pop("STOCHTEX_PLUGIN_PATH", None)
+            try:
+                self.assertEqual(stex_cli.find_plugin("", os.path.join(folder, "bin", "stex")), os.path.join(folder, "lib"))
+                with self.assertRaises(stex_cli.StexError) as caught:
+                    stex_cli.find_plugin("", "/nonexistent/bin/stex")
+                self.assertIn("add-on preferences", str(caught.exception))
+            finally:
+                if saved is not None:
+                    os.environ["STOCHTEX_PLUGIN_PATH"] = saved
+        finally:
+            shutil.rmtree(folder)
+        environ = {"OIIO_LIBRARY_PATH": "/a"}
+        stex_cli.add_plugin_path("/p", environ)
+        stex_cli.add_plugin_path("/p", environ)  # once only
+        self.assertEqual(environ, {"OIIO_LIBRARY_PATH": "/p" + os.pathsep + "/a", "OPENIMAGEIO_PLUGIN_PATH": "/p"})
+
+    def test_write_atomically_replaces_and_leaves_no_temporary(self):
+        folder = tempfile.mkdtemp(prefix="stochtex-atomic-test-")
+        try:
+            path = os.path.join(folder, "t.stex")
+            stex_cli.write_atomically(path, "one")
+            stex_cli.write_atomically(path, "two")
+            with open(path) as f:
+                self.assertEqual(f.read(), "two")
+            self.assertEqual(os.listdir(folder), ["t.stex"])
+        finally:
+            shutil.rmtree(folder)
+
 
 if __name__ == "__main__":
     unittest.main()
