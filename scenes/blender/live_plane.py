@@ -30,13 +30,7 @@ def extra(parser):
 
 args = s.arguments(__doc__, extra)
 os.makedirs(args.out, exist_ok=True)
-scene = s.empty_scene()
-s.cycles(scene, args.size, args.size, args.samples)
-scene.cycles.filter_width = 0.01
-scene.view_settings.view_transform = "Standard"
-
-bpy.ops.mesh.primitive_plane_add(size=2.0)
-plane = bpy.context.active_object
+scene, plane = s.measurement_scene(args.size, args.samples)
 mat = bpy.data.materials.new("live stex")
 plane.data.materials.append(mat)
 if bpy.app.version < (5, 0, 0):  # 5.0 deprecated use_nodes: every material has nodes

@@ -41,13 +41,7 @@ if args.route == "OSL" and not getattr(bpy.app.build_options, "cycles_osl", Fals
     s.write_report(args.out, "plane.json", {"cycles_osl": False})  # the test says why it skips
     sys.exit(0)
 s.install_addon(args.addon)
-scene = s.empty_scene()
-s.cycles(scene, args.size, args.size, args.samples)
-scene.cycles.filter_width = 0.01
-scene.view_settings.view_transform = "Standard"
-
-bpy.ops.mesh.primitive_plane_add(size=2.0)
-plane = bpy.context.active_object
+scene, plane = s.measurement_scene(args.size, args.samples)
 settings = {"live_size": args.live_size} if args.route == "LIVE" else {}
 if args.route == "LIVE":
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(args.out, "scene.blend"))  # live files go beside it

@@ -82,6 +82,18 @@ def cycles(scene, width, height, samples, seed=1):
     scene.render.threads_mode = "AUTO"
 
 
+def measurement_scene(size, samples):
+    """A Cycles scene for texel-exact measurement and a 2 m plane in it (UVs 0..1): size² pixels,
+    a 0.01 px pixel filter (every sample at its pixel's centre) and the Standard view transform
+    (no tone curve between the texture and the file). Returns (scene, plane)."""
+    scene = empty_scene()
+    cycles(scene, size, size, samples)
+    scene.cycles.filter_width = 0.01
+    scene.view_settings.view_transform = "Standard"
+    bpy.ops.mesh.primitive_plane_add(size=2.0)
+    return scene, bpy.context.active_object
+
+
 def analyse_onto(obj, photo, **settings):
     """Runs the add-on's analyse operator for obj's material, as the panel's button does."""
     mat = bpy.data.materials.new(obj.name + " material")
