@@ -97,26 +97,32 @@ if [ "$(cat "$ready52" 2>/dev/null)" != "${pins_52[*]}" ] || [ ! -x "$debian13$v
   in_folder python3.13 -m venv "$venv52"
   in_folder "$venv52/bin/pip" install -q --no-index --find-links /stochtex/wheels "${pins_52[@]}"
   unmount_all
-  # The host's view of that venv: $root/5.2 is a venv of its own (pyvenv.cfg: Debian 13's
-  # interpreter as home, the folder's site-packages) whose bin/python starts Debian 13's
-  # interpreter through Debian 13's loader under its own name, so sys.executable (which Blender
-  # runs for its extension commands) is this launcher again.
-  mkdir -p "$root/5.2/bin"
-  ln -sfn "$debian13$venv52/lib" "$root/5.2/lib"
-  printf 'home = %s\ninclude-system-site-packages = false\nversion = 3.13\n' "$debian13/usr/bin" >"$root/5.2/pyvenv.cfg"
-  cat >"$root/5.2/bin/python" <<EOF
-#!/bin/sh
-# Debian 13's Python 3.13 with bpy 5.2 (scripts/bpy-install.sh), run on this host by Debian 13's loader.
-exec $debian13/lib64/ld-linux-x86-64.so.2 --library-path $debian13/lib/x86_64-linux-gnu:$debian13/usr/lib/x86_64-linux-gnu \\
-  --argv0 $root/5.2/bin/python $debian13/usr/bin/python3.13 "\$@"
-EOF
-  chmod +x "$root/5.2/bin/python"
-  ln -sfn bin/python "$root/5.2/python"
   echo "${pins_52[*]}" >"$ready52"
   echo "bpy-install: bpy 5.2 installed in $debian13$venv52"
 else
   echo "bpy-install: reusing bpy 5.2 in $debian13$venv52"
 fi
+# The host's view of that venv (written every time: cheap, and a fixed launcher reaches caches
+# made before the fix): $root/5.2 is a venv of its own (pyvenv.cfg: Debian 13's interpreter as
+# home, the folder's site-packages) whose bin/python starts Debian 13's interpreter through Debian
+# 13's loader under its own name, so sys.executable (which Blender runs for its extension
+# commands) is this launcher again. bpy's own lib/ comes first on the loader's path: the path
+# outranks the module's RUNPATH ($ORIGIN/lib), and the Debian 13 lane installs Debian's Blender
+# 4.3 in the same folder, whose libembree4.so.4 and libtbb.so.12 (same names, older versions)
+# would otherwise stand in for the ones bpy 5.2 was built with ("undefined symbol:
+# rtcTraversableIntersect1").
+bpy_lib=$debian13$venv52/lib/python3.13/site-packages/bpy/lib
+mkdir -p "$root/5.2/bin"
+ln -sfn "$debian13$venv52/lib" "$root/5.2/lib"
+printf 'home = %s\ninclude-system-site-packages = false\nversion = 3.13\n' "$debian13/usr/bin" >"$root/5.2/pyvenv.cfg"
+cat >"$root/5.2/bin/python" <<EOF
+#!/bin/sh
+# Debian 13's Python 3.13 with bpy 5.2 (scripts/bpy-install.sh), run on this host by Debian 13's loader.
+exec $debian13/lib64/ld-linux-x86-64.so.2 --library-path $bpy_lib:$debian13/lib/x86_64-linux-gnu:$debian13/usr/lib/x86_64-linux-gnu \\
+  --argv0 $root/5.2/bin/python $debian13/usr/bin/python3.13 "\$@"
+EOF
+chmod +x "$root/5.2/bin/python"
+ln -sfn bin/python "$root/5.2/python"
 
 # Both must import and say what they are (a broken cache fails here, not in a test).
 for version in 4.5 5.2; do
