@@ -25,7 +25,9 @@
 # (/stochtex/build), so a second run only rebuilds what changed. /proc (and a tmpfs on /dev/shm)
 # are mounted only while the folder is in use and unmounted on exit, failure included.
 #
-# Usage (root): scripts/debian-folder-lane.sh trixie|sid (the front-ends call it).
+# Usage (root): scripts/debian-folder-lane.sh trixie|sid [--prepare] (the front-ends call it).
+# --prepare only makes (or checks) the folder and exits: the test command runs it in the
+# background, network-bound, while the main build compiles, and the lane later finds it ready.
 # STOCHTEX_SKIP_<LANE>=1 skips the lane; STOCHTEX_<LANE>_TESTS=REGEX runs only the lane's tests
 # whose names match (ctest -R). <LANE> is DEBIAN13 for trixie, SID for sid.
 set -euo pipefail
@@ -49,7 +51,7 @@ case "$suite" in
     extra_packages=(python3-cattr python3-requests)
     ;;
   *)
-    echo "debian-folder-lane: usage: $0 trixie|sid [--inside]" >&2
+    echo "debian-folder-lane: usage: $0 trixie|sid [--prepare]" >&2
     exit 2
     ;;
 esac
@@ -163,6 +165,7 @@ if [ ! -f "$ready" ] || [ "$(cat "$ready")" != "${packages[*]}" ]; then
 else
   echo "$lane-lane: reusing $root"
 fi
+if [ "${1:-}" = "--prepare" ]; then exit 0; fi
 
 mount_in "$root/proc" -t proc proc
 mount_in "$root/dev/shm" -t tmpfs tmpfs

@@ -13,6 +13,7 @@ packages=(
   clang-14 libclang-rt-14-dev  # the sanitizer lane: ASan + UBSan, libFuzzer (scripts/sanitizer-lane.sh)
   slurm-wlm munge  # the batch tests' one-node Slurm cluster (scripts/slurm-fixture.sh, tests/batch/)
   chromium  # the batch gallery's browser test (tests/batch/gallery_browser_test.sh)
+  debootstrap  # the Debian 13 and sid lanes' folders (scripts/debian-folder-lane.sh), made side by side
 )
 # Blender scene tests: blender, and xvfb for the tests of the add-on's interactive UI path.
 if [ "${1:-}" = "--with-blender" ]; then packages+=(blender xvfb); fi
