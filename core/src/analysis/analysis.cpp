@@ -8,7 +8,7 @@
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
 #include "models/model.h"
-#include "models/wavelet/band_power.h"
+#include "spectra/band_power.h"
 #include "stex/parameter_schema.h"
 
 #include <algorithm>

@@ -3,9 +3,9 @@
 // wavelet_texture.
 #include "analysis/info_text.h"
 #include "numerics/interpolation.h"
+#include "spectra/band_power.h"
 #include "models/model.h"
 #include "models/wavelet/band_leakage.h"
-#include "models/wavelet/band_power.h"
 #include "models/wavelet/wavelet_noise.h"
 #include "models/wavelet/wavelet_texture.h"
 
