@@ -1,6 +1,5 @@
 #include "models/tiling/tiling_exemplar.h"
 
-#include "analysis/model_choice.h"
 #include "colour/histogram_map.h"
 
 #include "spectra/fft.h"
@@ -193,7 +192,7 @@ TilingParameters exemplar_of(const std::array<std::vector<float>, 3>& channels, 
 
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
-                                     const TilingCandidateScore& score)
+                                     const TilingCandidateScore& score, const TilingCandidateChoice& choose)
 {
     if (max_side != automatic_exemplar_side && (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side))
         throw Error("tiling exemplar size must be in [" + std::to_string(min_tiling_exemplar_side) + ", " +
@@ -218,7 +217,7 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
         fitted.push_back(exemplar_of(channels, width, height, histograms, candidate, bits));
         scores.push_back(score(ModelParameters(fitted.back()), exemplar_scoring_side));
     }
-    return fitted[chosen_by_rule(scores)];
+    return fitted[choose(scores)];
 }
 
 }  // namespace stochtex

@@ -9,6 +9,7 @@
 #include <stochtex/metrics.h>
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -75,12 +76,14 @@ std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int
 
 /// Scores a candidate exemplar's parameters by its render against the photo (FitInput::score).
 using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, int max_side)>;
+/// The index of the score to keep among the candidates' (FitInput::choose: `--model auto`'s rule).
+using TilingCandidateChoice = std::function<std::size_t(const std::vector<ModelScore>& scores)>;
 
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
 /// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
 /// representative crop (representative_crop) of at most max_side² pixels, periodic, at `bits`
 /// bits. max_side automatic_exemplar_side: of automatic_exemplar_candidates, the one whose render
-/// `score` rates best by `--model auto`'s rule (fidelity first, within its tolerance the
+/// `score` rates best by `choose`, `--model auto`'s rule (fidelity first, within its tolerance the
 /// smallest file); a single candidate is taken unrendered. Crop statistics alone chose 512² for
 /// rusted metal, whose RGB render is then 1.86 dB off in radial spectrum where 256²'s is 1.14 dB.
 /// A channel with a map is stored in standard-normal units by the crop's own ranks (the map's
@@ -88,6 +91,6 @@ using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, in
 /// histograms are the photo's and the texture passes stored values to ColourMapping unscaled.
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
-                                     const TilingCandidateScore& score);
+                                     const TilingCandidateScore& score, const TilingCandidateChoice& choose);
 
 }  // namespace stochtex
