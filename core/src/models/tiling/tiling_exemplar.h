@@ -8,6 +8,8 @@
 
 #include <stochtex/metrics.h>
 
+#include "spectra/periodic_crop.h"
+
 #include <array>
 #include <cstddef>
 #include <functional>
@@ -17,11 +19,6 @@ namespace stochtex {
 
 /// The largest power of two ≤ n (n ≥ 1).
 int power_of_two_floor(int n);
-
-/// Where a crop starts in its photo (pixels); x < 0: centred.
-struct CropOrigin {
-    int x = -1, y = -1;
-};
 
 /// A crop of a photo and how well it stands for the whole: its channels' value distributions
 /// (W1 in σ, the worst channel) and its main channel's radial spectrum (log-PSD dB) against the
@@ -68,11 +65,6 @@ struct SizedCrop {
 /// serves keeps its 4× smaller file without a render, as concrete's RGB exemplar does.
 std::vector<SizedCrop> automatic_exemplar_candidates(const std::array<std::vector<float>, 3>& channels, int width,
                                                      int height);
-
-/// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
-/// (Moisan's periodic component, which keeps the crop's mean).
-std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
-                                 CropOrigin origin = {});
 
 /// Scores a candidate exemplar's parameters by its render against the photo (FitInput::score).
 using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, int max_side)>;
