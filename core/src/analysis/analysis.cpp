@@ -9,7 +9,7 @@
 #include "colour/histogram_map.h"
 #include "models/model.h"
 #include "spectra/band_power.h"
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <algorithm>
 #include <cmath>

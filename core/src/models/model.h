@@ -7,7 +7,7 @@
 // gets the .stex block's read, write and validation from it; it implements only its maths.
 #pragma once
 
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>

@@ -3,7 +3,7 @@
 #include "colour/histogram_map.h"
 
 #include "spectra/periodic_crop.h"
-#include "stex/quantised_image.h"
+#include "schema/quantised_image.h"
 #include "models/tiling/tiling_parameters.h"
 
 #include <stochtex/error.h>
