@@ -47,14 +47,19 @@ class IncludeLayers(unittest.TestCase):
         for text in expected:
             self.assertIn(text, problems[0])
 
+    def assert_include_fails(self, relative, included, rule):
+        """core/<relative> given `#include "included"`: one problem, at that line, naming the rule."""
+        line = self.add_line(relative, f'#include "{included}"')
+        self.assert_one_problem(f"core/{relative}:{line}: includes {included}", rule)
+        return line
+
     def test_the_tree_follows_its_layer_order(self):
         self.assertEqual(checker.check(ROOT / "core", self.layers), [])
         self.assertEqual(checker.check(self.core, self.layers), [])
 
     def test_a_model_including_analysis_fails(self):
-        line = self.add_line("src/models/wavelet/wavelet_model.cpp", '#include "analysis/model_choice.h"')
-        self.assert_one_problem(f"core/src/models/wavelet/wavelet_model.cpp:{line}: includes analysis/model_choice.h",
-                                "src/models/wavelet is below src/analysis")
+        line = self.assert_include_fails("src/models/wavelet/wavelet_model.cpp", "analysis/model_choice.h",
+                                         "src/models/wavelet is below src/analysis")
         # The command itself (what CTest `IncludeLayers` runs) exits 1 and names the include.
         run = subprocess.run([sys.executable, str(SCRIPT), "--core", str(self.core), "--layers", str(DOCUMENT)],
                              capture_output=True, text=True)
@@ -62,28 +67,23 @@ class IncludeLayers(unittest.TestCase):
         self.assertIn(f"core/src/models/wavelet/wavelet_model.cpp:{line}: includes analysis/model_choice.h", run.stdout)
 
     def test_a_model_header_including_analysis_fails(self):
-        line = self.add_line("src/models/gabor/gabor_kernel.h", '#include "analysis/structure_statistics.h"')
-        self.assert_one_problem(f"core/src/models/gabor/gabor_kernel.h:{line}", "below src/analysis")
+        self.assert_include_fails("src/models/gabor/gabor_kernel.h", "analysis/structure_statistics.h", "below src/analysis")
 
     def test_a_model_including_another_model_fails(self):
-        line = self.add_line("src/models/ptm/ptm_unbounded.cpp", '#include "models/tiling/tiling_exemplar.h"')
-        self.assert_one_problem(f"core/src/models/ptm/ptm_unbounded.cpp:{line}", "src/models/tiling is private")
+        self.assert_include_fails("src/models/ptm/ptm_unbounded.cpp", "models/tiling/tiling_exemplar.h",
+                                  "src/models/tiling is private")
 
     def test_analysis_reaching_into_a_model_fails(self):
-        line = self.add_line("src/analysis/analysis.cpp", '#include "models/wavelet/band_leakage.h"')
-        self.assert_one_problem(f"core/src/analysis/analysis.cpp:{line}", "src/models/wavelet is private")
+        self.assert_include_fails("src/analysis/analysis.cpp", "models/wavelet/band_leakage.h", "src/models/wavelet is private")
 
     def test_footprint_maths_stays_below_the_models(self):
-        line = self.add_line("src/filtering/footprint_filter.cpp", '#include "models/model.h"')
-        self.assert_one_problem(f"core/src/filtering/footprint_filter.cpp:{line}", "src/filtering is below src/models")
+        self.assert_include_fails("src/filtering/footprint_filter.cpp", "models/model.h", "src/filtering is below src/models")
 
     def test_siblings_do_not_include_each_other(self):
-        line = self.add_line("src/colour/gaussian.cpp", '#include "spectra/fft.h"')
-        self.assert_one_problem(f"core/src/colour/gaussian.cpp:{line}", "siblings")
+        self.assert_include_fails("src/colour/gaussian.cpp", "spectra/fft.h", "siblings")
 
     def test_the_public_api_includes_no_private_header(self):
-        line = self.add_line("include/stochtex/texture.h", '#include "numerics/random.h"')
-        self.assert_one_problem(f"core/include/stochtex/texture.h:{line}", "include/stochtex is below src/numerics")
+        self.assert_include_fails("include/stochtex/texture.h", "numerics/random.h", "include/stochtex is below src/numerics")
 
     def test_a_folder_in_no_layer_fails(self):
         self.add_line("src/somewhere/new_thing.cpp", "int new_thing() { return 0; }")
