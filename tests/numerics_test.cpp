@@ -1,8 +1,8 @@
 // Unit tests of the numerical building blocks: normal distribution, Gauss–Hermite, monotone
 // cubic, empirical distributions, band indexing and the PSD estimators.
-#include "models/wavelet/band_power.h"
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
+#include "spectra/band_power.h"
 
 #include <gtest/gtest.h>
 #include <hwy/targets.h>

@@ -3,7 +3,7 @@
 #include <stochtex/channel_map.h>
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
-#include <stochtex/models/octave_spectrum.h>
+#include <stochtex/models/channel_spectrum.h>
 #include <stochtex/models/wavelet_parameters.h>
 
 #include "numerics/nonnegative_least_squares.h"

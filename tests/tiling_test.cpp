@@ -4,12 +4,13 @@
 // round trip and its strict validation.
 #include "test_support.h"
 
-#include "stex/base64.h"
+#include "analysis/model_choice.h"
+#include "schema/base64.h"
 #include "models/tiling/colour_map_filter.h"
 #include "models/tiling/colour_maps.h"
 #include "models/tiling/moment_pyramid.h"
 #include "models/tiling/normal_map_filter.h"
-#include "stex/quantised_image.h"
+#include "schema/quantised_image.h"
 #include "models/tiling/tiling_estimator_reference.h"
 #include "models/tiling/tiling_exemplar.h"
 #include "models/tiling/tiling_texture.h"
@@ -640,7 +641,8 @@ TEST(TilingExemplarSize, TheCandidatesRendersAreScoredAndTheModelChoiceRuleKeeps
             s.bytes = (long long)side * side;
             return s;
         };
-        const TilingParameters fitted = fit_tiling_exemplar(channels, 1024, 1024, no_maps, automatic_exemplar_side, 8, score);
+        const TilingParameters fitted = fit_tiling_exemplar(channels, 1024, 1024, no_maps, automatic_exemplar_side, 8, score,
+                                                            chosen_by_rule);
         EXPECT_EQ(scored, std::vector<int>({256, 512}));
         return fitted.exemplar.width;
     };
@@ -651,7 +653,7 @@ TEST(TilingExemplarSize, TheCandidatesRendersAreScoredAndTheModelChoiceRuleKeeps
         ADD_FAILURE() << "a single candidate was scored";
         return {};
     };
-    EXPECT_EQ(fit_tiling_exemplar(noise_channels(512, true), 512, 512, no_maps, automatic_exemplar_side, 8, unused).exemplar.width, 256);
+    EXPECT_EQ(fit_tiling_exemplar(noise_channels(512, true), 512, 512, no_maps, automatic_exemplar_side, 8, unused, chosen_by_rule).exemplar.width, 256);
 }
 
 }  // namespace

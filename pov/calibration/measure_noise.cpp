@@ -6,7 +6,7 @@
 #include <stochtex/error.h>
 #include <stochtex/image.h>
 #include <stochtex/metrics.h>
-#include <stochtex/models/octave_spectrum.h>
+#include <stochtex/octave_spectrum.h>
 
 #include <cmath>
 #include <cstdio>

@@ -5,7 +5,7 @@
 // (pov/calibration/calibrate.sh writes pov_noise_calibration.cpp; docs/pov.md).
 #pragma once
 
-#include <stochtex/models/octave_spectrum.h>
+#include <stochtex/octave_spectrum.h>
 
 #include <string>
 

@@ -15,7 +15,7 @@
 
 #include <stochtex/channel_map.h>
 #include <stochtex/error.h>
-#include <stochtex/models/octave_spectrum.h>
+#include <stochtex/models/channel_spectrum.h>
 #include <stochtex/texture.h>
 #include <stochtex/models/wavelet_parameters.h>
 

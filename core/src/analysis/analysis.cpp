@@ -8,8 +8,8 @@
 #include "colour/gaussian.h"
 #include "colour/histogram_map.h"
 #include "models/model.h"
-#include "models/wavelet/band_power.h"
-#include "stex/parameter_schema.h"
+#include "spectra/band_power.h"
+#include "schema/parameter_schema.h"
 
 #include <algorithm>
 #include <cmath>
@@ -160,7 +160,7 @@ TextureDescription analyze_one_model(const Image& photo, const AnalysisOptions& 
         return score_against_photo(candidate, prepared_photo ? *prepared_photo : *photo_side, max_side);
     };
     const FitInput input{channels, photo.width, photo.height, colour, description.histograms, band_count, options,
-                         std::move(model_options), score};
+                         std::move(model_options), score, chosen_by_rule};
     description.parameters = model.fit(input, provenance);
     provenance.options.insert(provenance.options.end(),
                               {{"seed", std::to_string(options.seed)}, {"unit_size_m", format_number(options.unit_size_m)}});

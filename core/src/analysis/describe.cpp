@@ -1,7 +1,7 @@
 #include <stochtex/describe.h>
 #include <stochtex/texture.h>
 
-#include "analysis/info_text.h"
+#include "models/info_text.h"
 #include "models/model.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // stochtex — grey PNGs in memory: the quantised planes embedded in .stex files
-// (stex/quantised_image.cpp), through the built-in PNG codec.
+// (schema/quantised_image.cpp), through the built-in PNG codec.
 #pragma once
 
 #include <cstdint>

@@ -7,7 +7,7 @@
 // gets the .stex block's read, write and validation from it; it implements only its maths.
 #pragma once
 
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
@@ -15,6 +15,7 @@
 #include <stochtex/texture.h>
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <map>
 #include <memory>
@@ -55,6 +56,12 @@ struct FitInput {
     /// chooses among candidates of its own by what their renders look like (tiling's automatic
     /// exemplar size).
     std::function<ModelScore(const ModelParameters& parameters, int max_side)> score;
+    /// Which of such scores to keep, by `--model auto`'s rule (analysis/model_choice.h:
+    /// chosen_by_rule): the index of the lowest penalty or, among those within
+    /// model_choice_tolerance of it, the smallest file. Given to the fit, not included by it, so
+    /// a fit keeps its candidates as the choice keeps models while the models stay below
+    /// analysis/ (docs/architecture.md, "Layers").
+    std::function<std::size_t(const std::vector<ModelScore>& scores)> choose;
 };
 
 class Model {

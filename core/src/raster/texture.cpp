@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "models/model.h"
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 namespace stochtex {
 

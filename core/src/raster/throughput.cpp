@@ -7,7 +7,7 @@
 
 #include "image/image_codec.h"
 #include "parallel/parallel_for.h"
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <algorithm>
 #include <chrono>

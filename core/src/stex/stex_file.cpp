@@ -3,7 +3,7 @@
 #include <stochtex/stex_file.h>
 
 #include "models/model.h"
-#include "stex/json_fields.h"
+#include "schema/json_fields.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -4,7 +4,7 @@
 
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
-#include <stochtex/models/octave_spectrum.h>
+#include <stochtex/octave_spectrum.h>
 #include <stochtex/models/gabor_parameters.h>
 
 #include <algorithm>

@@ -18,7 +18,7 @@
 // rank 1: a footprint collapsed to a line) are handled without special cases.
 #pragma once
 
-#include "raster/footprint_filter.h"
+#include "filtering/footprint_filter.h"
 
 #include <algorithm>
 #include <cmath>

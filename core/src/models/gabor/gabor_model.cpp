@@ -1,11 +1,11 @@
 // The gabor model (paper 001) in the registry: its parameter schema, analysis options, fit,
 // morph and `stex info` lines. The maths is in gabor_kernel, gabor_noise, gabor_statistics,
 // gabor_fit and gabor_texture.
-#include "analysis/info_text.h"
 #include "numerics/interpolation.h"
 #include "models/gabor/gabor_fit.h"
 #include "models/gabor/gabor_noise.h"
 #include "models/gabor/gabor_texture.h"
+#include "models/info_text.h"
 #include "models/model.h"
 
 #include <stochtex/models/gabor_parameters.h>

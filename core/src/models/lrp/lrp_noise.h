@@ -32,7 +32,7 @@
 #pragma once
 
 #include "numerics/exact_rounding.h"
-#include "raster/footprint_filter.h"
+#include "filtering/footprint_filter.h"
 #include "models/lrp/lrp_window.h"
 
 #include <stochtex/footprint.h>

@@ -2,7 +2,7 @@
 // validation and canonical writing.
 #pragma once
 
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/texture_description.h>
 #include <stochtex/models/lrp_parameters.h>

@@ -5,7 +5,7 @@
 #include "models/lrp/lrp_parameters.h"
 #include "models/lrp/lrp_spectrum_sampling.h"
 #include "models/lrp/lrp_structure_noise.h"
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/lrp_parameters.h>

@@ -3,7 +3,7 @@
 #include <stochtex/error.h>
 #include <stochtex/models/ptm.h>
 
-#include "stex/json_fields.h"
+#include "schema/json_fields.h"
 
 #include <algorithm>
 #include <charconv>

@@ -2,7 +2,7 @@
 // validating `parameters`, and the coefficient file beside the .stex. Used by ptm_model.cpp.
 #pragma once
 
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/texture_description.h>
 #include <stochtex/models/ptm_parameters.h>

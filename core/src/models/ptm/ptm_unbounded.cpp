@@ -1,6 +1,6 @@
 // An unbounded ptm: the coefficient maps made periodic, then tiled and blended by the texture
 // (ptm_texture.h; docs/models/ptm.md, "Unbounded").
-#include "models/tiling/tiling_exemplar.h"
+#include "spectra/periodic_crop.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/ptm.h>

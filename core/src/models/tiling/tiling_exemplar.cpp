@@ -1,10 +1,9 @@
 #include "models/tiling/tiling_exemplar.h"
 
-#include "analysis/model_choice.h"
 #include "colour/histogram_map.h"
 
-#include "spectra/fft.h"
-#include "stex/quantised_image.h"
+#include "spectra/periodic_crop.h"
+#include "schema/quantised_image.h"
 #include "models/tiling/tiling_parameters.h"
 
 #include <stochtex/error.h>
@@ -35,13 +34,6 @@ std::vector<double> sorted_sample(const std::vector<float>& plane, int width, in
         for (int x = x0; x < x0 + w; x += step) sample.push_back(plane[std::size_t(y) * width + x]);
     std::sort(sample.begin(), sample.end());
     return sample;
-}
-
-std::vector<float> region(const std::vector<float>& plane, int width, int x0, int y0, int w, int h)
-{
-    std::vector<float> crop(std::size_t(w) * h);
-    for (int y = 0; y < h; ++y) std::copy_n(&plane[std::size_t(y0 + y) * width + x0], w, &crop[std::size_t(y) * w]);
-    return crop;
 }
 
 /// At most this many crop positions per axis are tried, evenly spaced from edge to edge.
@@ -102,7 +94,7 @@ RepresentativeCrop representative_crop(const std::array<std::vector<float>, 3>& 
     std::stable_sort(scored.begin(), scored.end(), [](const RepresentativeCrop& a, const RepresentativeCrop& b) { return a.w1_term < b.w1_term; });
     scored.resize(std::min<std::size_t>(scored.size(), crops_with_spectrum_compared));
     for (RepresentativeCrop& s : scored) {
-        const RadialPsd crop_psd = radial_psd(region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
+        const RadialPsd crop_psd = radial_psd(plane_region(channels[0], width, s.origin.x, s.origin.y, crop_width, crop_height),
                                               crop_width, crop_height);
         s.spectrum_term = log_psd_distance_db(crop_psd, whole.main_psd) / targets.radial_log_psd_db;
     }
@@ -140,18 +132,6 @@ std::vector<SizedCrop> automatic_exemplar_candidates(const std::array<std::vecto
         if (candidates.back().crop.representative()) break;
     }
     return candidates;
-}
-
-std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
-                                 CropOrigin origin)
-{
-    if (origin.x < 0) origin = {(width - crop_width) / 2, (height - crop_height) / 2};
-    const std::vector<float> crop = region(plane, width, origin.x, origin.y, crop_width, crop_height);
-    // The inverse transform is unnormalised: divide by the pixel count.
-    std::vector<float> periodic = real_inverse_fft_2d(periodic_component_fft_2d(crop, crop_width, crop_height), crop_width, crop_height);
-    const float scale = 1.0f / (float(crop_width) * float(crop_height));
-    for (float& value : periodic) value *= scale;
-    return periodic;
 }
 
 namespace {
@@ -193,7 +173,7 @@ TilingParameters exemplar_of(const std::array<std::vector<float>, 3>& channels, 
 
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
-                                     const TilingCandidateScore& score)
+                                     const TilingCandidateScore& score, const TilingCandidateChoice& choose)
 {
     if (max_side != automatic_exemplar_side && (max_side < min_tiling_exemplar_side || max_side > max_tiling_exemplar_side))
         throw Error("tiling exemplar size must be in [" + std::to_string(min_tiling_exemplar_side) + ", " +
@@ -218,7 +198,7 @@ TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& ch
         fitted.push_back(exemplar_of(channels, width, height, histograms, candidate, bits));
         scores.push_back(score(ModelParameters(fitted.back()), exemplar_scoring_side));
     }
-    return fitted[chosen_by_rule(scores)];
+    return fitted[choose(scores)];
 }
 
 }  // namespace stochtex

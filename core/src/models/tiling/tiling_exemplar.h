@@ -8,7 +8,10 @@
 
 #include <stochtex/metrics.h>
 
+#include "spectra/periodic_crop.h"
+
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -16,11 +19,6 @@ namespace stochtex {
 
 /// The largest power of two ≤ n (n ≥ 1).
 int power_of_two_floor(int n);
-
-/// Where a crop starts in its photo (pixels); x < 0: centred.
-struct CropOrigin {
-    int x = -1, y = -1;
-};
 
 /// A crop of a photo and how well it stands for the whole: its channels' value distributions
 /// (W1 in σ, the worst channel) and its main channel's radial spectrum (log-PSD dB) against the
@@ -68,19 +66,16 @@ struct SizedCrop {
 std::vector<SizedCrop> automatic_exemplar_candidates(const std::array<std::vector<float>, 3>& channels, int width,
                                                      int height);
 
-/// The crop_width × crop_height part of a plane at origin (default: centred), made periodic
-/// (Moisan's periodic component, which keeps the crop's mean).
-std::vector<float> periodic_crop(const std::vector<float>& plane, int width, int height, int crop_width, int crop_height,
-                                 CropOrigin origin = {});
-
 /// Scores a candidate exemplar's parameters by its render against the photo (FitInput::score).
 using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, int max_side)>;
+/// The index of the score to keep among the candidates' (FitInput::choose: `--model auto`'s rule).
+using TilingCandidateChoice = std::function<std::size_t(const std::vector<ModelScore>& scores)>;
 
 /// The colour-output parameters from the analysis's decorrelated channels of a width × height
 /// photo, Gaussianised where the channel has a histogram map: the exemplar is their most
 /// representative crop (representative_crop) of at most max_side² pixels, periodic, at `bits`
 /// bits. max_side automatic_exemplar_side: of automatic_exemplar_candidates, the one whose render
-/// `score` rates best by `--model auto`'s rule (fidelity first, within its tolerance the
+/// `score` rates best by `choose`, `--model auto`'s rule (fidelity first, within its tolerance the
 /// smallest file); a single candidate is taken unrendered. Crop statistics alone chose 512² for
 /// rusted metal, whose RGB render is then 1.86 dB off in radial spectrum where 256²'s is 1.14 dB.
 /// A channel with a map is stored in standard-normal units by the crop's own ranks (the map's
@@ -88,6 +83,6 @@ using TilingCandidateScore = std::function<ModelScore(const ModelParameters&, in
 /// histograms are the photo's and the texture passes stored values to ColourMapping unscaled.
 TilingParameters fit_tiling_exemplar(const std::array<std::vector<float>, 3>& channels, int width, int height,
                                      const std::array<HistogramMap, 3>& histograms, int max_side, int bits,
-                                     const TilingCandidateScore& score);
+                                     const TilingCandidateScore& score, const TilingCandidateChoice& choose);
 
 }  // namespace stochtex

@@ -61,7 +61,8 @@ public:
         provenance.options.insert(provenance.options.end(), {{"exemplar_size", size_text},
                                                              {"exemplar_bits", std::to_string(bits)}});
         TilingParameters parameters =
-            fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits, input.score);
+            fit_tiling_exemplar(input.channels, input.width, input.height, input.histograms, size, bits, input.score,
+                                input.choose);
         // Recorded only when not the default, so that default analyses write the files they did.
         const int taps = std::stoi(input.model_options.at("filter-taps"));
         if (taps != TilingParameters::default_filter_taps) {

@@ -1,7 +1,7 @@
 #include "models/tiling/tiling_parameters.h"
 
-#include "stex/base64.h"
-#include "stex/quantised_image.h"
+#include "schema/base64.h"
+#include "schema/quantised_image.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/tiling_parameters.h>

@@ -3,7 +3,7 @@
 // (quantised_image.h).
 #pragma once
 
-#include "stex/parameter_schema.h"
+#include "schema/parameter_schema.h"
 
 #include <stochtex/texture_description.h>
 #include <stochtex/models/tiling_parameters.h>

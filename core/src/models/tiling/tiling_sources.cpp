@@ -8,7 +8,7 @@
 
 #include "models/tiling/colour_maps.h"
 #include "models/tiling/phasor_field.h"
-#include "stex/quantised_image.h"
+#include "schema/quantised_image.h"
 #include "models/tiling/tiling_exemplar.h"
 #include "models/tiling/tiling_parameters.h"
 

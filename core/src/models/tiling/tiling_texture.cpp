@@ -1,7 +1,7 @@
 #include "models/tiling/tiling_texture.h"
 
 #include "models/tiling/normal_map_filter.h"
-#include "stex/quantised_image.h"
+#include "schema/quantised_image.h"
 #include "numerics/random.h"
 
 #include <stochtex/error.h>

@@ -1,8 +1,8 @@
 #include "models/wavelet/band_leakage.h"
 
-#include "models/wavelet/band_power.h"
-#include "spectra/fft.h"
 #include "models/wavelet/wavelet_noise.h"
+#include "spectra/band_power.h"
+#include "spectra/fft.h"
 
 #include <Eigen/Dense>
 

@@ -1,11 +1,11 @@
 // The wavelet model (paper 000) in the registry: its parameter schema, analysis options, fit,
-// morph and `stex info` lines. The maths is in wavelet_noise, band_power, band_leakage and
+// morph and `stex info` lines. The maths is in wavelet_noise, spectra/band_power, band_leakage and
 // wavelet_texture.
-#include "analysis/info_text.h"
 #include "numerics/interpolation.h"
+#include "spectra/band_power.h"
+#include "models/info_text.h"
 #include "models/model.h"
 #include "models/wavelet/band_leakage.h"
-#include "models/wavelet/band_power.h"
 #include "models/wavelet/wavelet_noise.h"
 #include "models/wavelet/wavelet_texture.h"
 

@@ -1,5 +1,7 @@
-// Formatting `stex info` lines: one printf-style helper for the shared lines (describe.cpp)
-// and each model's own (Model::describe), so the columns line up the same way everywhere.
+// Formatting `stex info` lines: one printf-style helper for the shared lines (analysis/describe.cpp)
+// and each model's own (Model::describe), so the columns line up the same way everywhere. Beside
+// model.h, below every model's folder, so that models format their lines without including
+// analysis/.
 #pragma once
 
 #include <cstdio>

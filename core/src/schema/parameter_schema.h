@@ -15,7 +15,7 @@
 // custom(). Checks that relate several fields are added with check().
 #pragma once
 
-#include "stex/json_fields.h"
+#include "schema/json_fields.h"
 
 #include <stochtex/model.h>
 

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <stochtex/metrics.h>
-#include <stochtex/texture_description.h>
 
 #include <vector>
 
@@ -30,15 +29,6 @@ struct OctaveSpectrum {
 /// Converts a radially averaged PSD measured on a raster with `samples_per_unit` pixels per unit
 /// to variance per octave in cycles per unit.
 OctaveSpectrum octave_spectrum(const RadialPsd& psd, double samples_per_unit);
-
-/// The expected spectrum of decorrelated channel `channel` before its histogram map (the
-/// Gaussian noise m_c of the model), in cycles per texture unit, for the 2D texture (the
-/// photo's statistics). wavelet: Σ_j w_cj² · (the band's own spectrum, measured once from a
-/// point-sampled render of one band) shifted to band j's lattice frequency ppu·2^-j. Sampled
-/// (8 per octave) only where the analysis measured the photo: from the coarsest band's lower
-/// edge, 2^-(J+1) cycles per exemplar pixel, to 1 cycle per exemplar pixel.
-/// Throws Error for a model that has no such spectrum.
-OctaveSpectrum channel_spectrum(const TextureDescription& description, int channel);
 
 /// Copies of one basis noise at octave-spaced frequencies whose summed spectrum approximates a
 /// target: octave k is the basis scaled to lattice frequency 2^log2_frequency[k] (cycles of the

@@ -1,4 +1,4 @@
-#include "stex/quantised_image.h"
+#include "schema/quantised_image.h"
 
 #include <stochtex/error.h>
 

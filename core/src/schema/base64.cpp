@@ -1,4 +1,4 @@
-#include "stex/base64.h"
+#include "schema/base64.h"
 
 #include <stochtex/error.h>
 

@@ -1,4 +1,4 @@
-#include "raster/footprint_filter.h"
+#include "filtering/footprint_filter.h"
 
 namespace stochtex {
 

@@ -1,4 +1,4 @@
-#include "stex/json_fields.h"
+#include "schema/json_fields.h"
 
 #include <stochtex/error.h>
 

@@ -1,4 +1,4 @@
-#include "models/wavelet/band_power.h"
+#include "spectra/band_power.h"
 
 #include "spectra/fft.h"
 
