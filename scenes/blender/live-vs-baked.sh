@@ -6,7 +6,7 @@
 # render seconds (straight on + receding), Blender's peak resident memory.
 #
 # Usage: scenes/blender/live-vs-baked.sh BUILD OUT [PHOTO]
-#   BUILD: a build folder holding cli/stex, plugin/stex.imageio.so (built against the OIIO the
+#   BUILD: a build folder holding cli/stex, plugins/stex.imageio.so (built against the OIIO the
 #          `blender` on PATH loads) and addon/stochtex-*.zip; OUT: a scratch folder (≈ 1.5 GB:
 #          the 16384² EXR); PHOTO: default data/exemplars/concrete_512.png.
 # Blender 5.2+ streams all three files tile by tile (its texture cache); older Blenders read
@@ -25,7 +25,7 @@ out=$2
 photo=${3:-$src/data/exemplars/concrete_512.png}
 stex=$build/cli/stex
 addon=$(ls "$build"/addon/stochtex-*.zip 2>/dev/null | head -1)
-plugins=$build/plugin
+plugins=$build/plugins
 for needed in "$stex" "$addon" "$plugins/stex.imageio.so" "$photo"; do
   [ -e "$needed" ] || { echo "live-vs-baked: missing $needed (build the stex, stex_imageio and stochtex_addon targets)" >&2; exit 1; }
 done
