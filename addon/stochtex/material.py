@@ -93,7 +93,7 @@ def _texture_input(nodes, settings, x):
 def build_material(material, settings, name, image=None, period=1.0, osl_text=None, unit_size_m=1.0, live=None):
     """(Re)builds `material`'s nodes: coordinates → texture → Principled Base Color → output.
 
-    period: the baked map's period in the coordinates' units (_period). live: (the .stex image,
+    period: the baked map's period in the coordinates' units (map_period). live: (the .stex image,
     its period) for the Live route, whose texture feeds a Cycles-only output (_live_output).
     Everything else in the material is left alone, except nodes this add-on made before
     (named "stochtex ..."), which are replaced.
