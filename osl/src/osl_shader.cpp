@@ -8,6 +8,7 @@
 #include <stochtex/models/wavelet_shader_data.h>
 
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -97,7 +98,9 @@ std::string instantiate(const std::string& file, const std::string& template_nam
     const std::size_t from = text.find(begin), to = text.find(end);
     if (from == std::string::npos || to == std::string::npos || to < from)
         throw Error("OSL shader template: parameter markers not found (build is inconsistent)");
-    text.replace(from, to + end.size() - from, parameters);
+    // Every shader reads the row probe first (stochtex_subset.h), so the block starts with it.
+    const std::string probe = "    string rows_probe = " + quoted(options.images.rows_probe) + ",\n";
+    text.replace(from, to + end.size() - from, probe + parameters);
     std::set<std::string> inlined;
     text = inline_includes(text, inlined);
     text = replace_once(text, "shader " + template_name + "(", "shader " + options.shader_name + "(");
@@ -335,7 +338,10 @@ OslImagePaths osl_image_paths(const TextureDescription& description, const std::
         paths.sphere_table = (dir / "stochtex_gabor_sphere.exr").string();
     } else if (description.model == "tiling") {
         paths.moments = (dir / (shader_stem + "_moments.exr")).string();
+    } else {
+        return paths;  // no transcription, no images
     }
+    paths.rows_probe = (dir / "stochtex_rows.exr").string();
     return paths;
 }
 
@@ -353,6 +359,13 @@ std::string make_osl_shader(const TextureDescription& description, const OslShad
 
 void write_osl_images(const TextureDescription& description, const OslImagePaths& files)
 {
+    if (!files.rows_probe.empty()) {
+        // 8 x 8 texels, not 1 x 2: an image one texel high or wide is one a host may treat specially.
+        constexpr int probe_size = 8;
+        std::vector<float> probe(probe_size * probe_size, 0.0f);
+        std::fill(probe.begin() + probe.size() / 2, probe.end(), 1.0f);  // the bottom half
+        write_float_exr(files.rows_probe, probe_size, probe_size, {"Y"}, probe.data(), "row probe");
+    }
     if (description.model == "wavelet") write_noise_tiles(files.tile_2d, files.tile_3d);
     if (description.model == "gabor") {
         const GaborSphereTable table = gabor_sphere_table();
