@@ -464,16 +464,16 @@ TEST(OslGaborShader, JointColourMatchesCore)
 
 // A host whose texture() runs rows bottom-up (Cycles 5.2) gets the same texture through the row
 // probe, bit for bit; the shader without it (flag 0 there) reads the sphere-average table
-// mirrored, which the retained variance of every filtered octave shows (the table is nearly
-// symmetric: small, but not zero).
+// mirrored, which the retained variance of filtered octaves shows (measured: up to 0.11 σ).
 TEST(OslGaborShader, MirroringHostGivesTheSameTextureThroughTheRowProbe)
 {
     const TextureDescription description = concrete(HistogramMode::on);
     GaborShim shim(description, test::temp_dir("oslgaborrows"));
     const double ppu = description.pixels_per_unit;
+    const std::array<double, 3> sigma = osl_test::channel_sigmas(*make_texture(description));
     std::mt19937 rng(31);
     std::uniform_real_distribution<double> position(-3.0, 3.0);
-    double unprobed = 0;  // the largest difference a shader ignoring the probe would show
+    double unprobed = 0;  // in σ: the largest difference a shader ignoring the probe would show
     for (const FootprintClass& fc : footprint_classes) {
         for (int n = 0; n < 20; ++n) {
             const Vec3 p{position(rng), position(rng), 0};
@@ -485,11 +485,11 @@ TEST(OslGaborShader, MirroringHostGivesTheSameTextureThroughTheRowProbe)
             const Rgb ignored = shim.eval_rows(false, p, {0, 0, 0}, dpdx, dpdy, 0);
             for (int c = 0; c < 3; ++c) {
                 ASSERT_EQ(bottom_up[c], top_down[c]) << fc.name << " point " << n << " channel " << c;
-                unprobed = std::max(unprobed, double(std::abs(ignored[c] - top_down[c])));
+                unprobed = std::max(unprobed, std::abs(double(ignored[c]) - top_down[c]) / sigma[c]);
             }
         }
     }
-    EXPECT_GT(unprobed, 0.0) << "the mirrored host must read other texels of the table";
+    EXPECT_GT(unprobed, 0.01) << "the mirrored host must read other texels of the table";
 }
 
 TEST(OslGaborShader, GeneratedShaderIsSelfContained)
