@@ -29,6 +29,8 @@
 #define STOCHTEX_TILING_NORMAL_MAP 2
 // Moments: mean[3], then the centred second moments packed as (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
 #define STOCHTEX_TILING_MOMENTS 9
+// The moment planes per row (and rows) of the atlas image: 3 x 3 (stochtex_tiling_texel).
+#define STOCHTEX_TILING_GRID 3
 
 // The vertex (i, j)'s offset into the exemplar, as the 48 leading bits of the core's 53-bit
 // uniforms: offset = hi / 2^24 + lo / 2^48 (TilingGrid::draw: SplitMix64(mix_seed(seed, i, j))).
@@ -70,14 +72,19 @@ float stochtex_tiling_shift(int offset_hi, int offset_lo, int size_log2, float c
 }
 
 // One texel's moments from the atlas (level at row offset level_y, size level_w x level_h; rows
-// as the host runs them: stochtex_subset.h).
+// as the host runs them: stochtex_subset.h). The atlas image holds the 9 moment planes, each
+// atlas_w x atlas_h, as a 3 x 3 grid of one channel (plane k at column k % 3, row k / 3), not as
+// 9 channels: Cycles 5.2 ignores the firstchannel option (a float lookup there returns the
+// file's first channel whatever it asks for); a single-channel texel reads the same everywhere.
 void stochtex_tiling_texel(string atlas, int atlas_w, int atlas_h, int rows_bottom_up, int level_y, int x, int y,
                            STOCHTEX_OUT_ARRAY(float) texel[STOCHTEX_TILING_MOMENTS])
 {
-    float s = (float(x) + 0.5) / float(atlas_w);
-    float t = stochtex_row_t((float(level_y + y) + 0.5) / float(atlas_h), rows_bottom_up);
-    for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k)
-        texel[k] = texture(atlas, s, t, "firstchannel", k, "interp", "closest", "width", 0.0);
+    float grid_w = float(STOCHTEX_TILING_GRID * atlas_w), grid_h = float(STOCHTEX_TILING_GRID * atlas_h);
+    for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k) {
+        float s = (float(x + atlas_w * (k % STOCHTEX_TILING_GRID)) + 0.5) / grid_w;
+        float t = (float(level_y + y + atlas_h * (k / STOCHTEX_TILING_GRID)) + 0.5) / grid_h;
+        texel[k] = texture(atlas, s, stochtex_row_t(t, rows_bottom_up), "interp", "closest", "width", 0.0);
+    }
 }
 
 int stochtex_tiling_wrap(int i, int n)

@@ -252,6 +252,8 @@ inline void expect_self_contained(const std::string& text)
     EXPECT_EQ(text.find("#include"), std::string::npos) << "the headers must be inlined";
     EXPECT_NE(text.find("shader stochtex_test("), std::string::npos);
     EXPECT_EQ(text.find("@stochtex-parameters"), std::string::npos);
+    // Cycles 5.2 ignores texture()'s "firstchannel": every lookup must read a single-channel image.
+    EXPECT_EQ(text.find("\"firstchannel\""), std::string::npos) << "Cycles 5.2 reads channel 0 whatever is asked";
     for (char c : text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
 }
 

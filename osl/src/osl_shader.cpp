@@ -25,7 +25,7 @@ namespace {
 constexpr int max_bands = 24, max_knots = 64, gh_count = 12, max_joint_knots = 64;
 constexpr int max_octaves = 24, octave_stride = 16;
 constexpr int atlas_per_row = 8;  // 64 slices of the 3D tile as 8 × 8
-constexpr int moment_channels = 9;
+constexpr int moment_channels = 9, moment_grid = 3;  // osl/stochtex_tiling.h: STOCHTEX_TILING_MOMENTS, _GRID
 
 std::string number(double value)
 {
@@ -373,10 +373,15 @@ void write_osl_images(const TextureDescription& description, const OslImagePaths
     }
     if (description.model == "tiling") {
         const TilingShaderData data = tiling_shader_data(description);
-        // Names that sort as they are ordered: EXR stores channels alphabetically.
-        std::vector<std::string> names;
-        for (int c = 0; c < moment_channels; ++c) names.push_back("m" + std::to_string(c));
-        write_float_exr(files.moments, data.width, data.atlas_height, names, data.atlas.data(), "moment pyramid");
+        // The 9 moment planes as a 3 x 3 grid of one channel (stochtex_tiling_texel says why).
+        const int w = data.width, h = data.atlas_height, grid_w = moment_grid * w;
+        std::vector<float> planes(std::size_t(moment_channels) * w * h);
+        for (int k = 0; k < moment_channels; ++k)
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    planes[std::size_t(y + h * (k / moment_grid)) * grid_w + x + w * (k % moment_grid)] =
+                        data.atlas[(std::size_t(y) * w + x) * moment_channels + k];
+        write_float_exr(files.moments, grid_w, moment_grid * h, {"Y"}, planes.data(), "moment pyramid");
     }
 }
 
