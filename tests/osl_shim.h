@@ -246,6 +246,24 @@ inline double testshade_rms_sigma(const stochtex::Image& core, const stochtex::I
     return worst;
 }
 
+/// One point in a top-down host and in a mirroring one (Cycles 5.2): `shade(rows)` evaluates a
+/// shader with its row flag read from its probe (rows < 0) or given. Fails unless the mirroring
+/// host gives the top-down values bit for bit through the probe; returns, in units of `sigma`,
+/// how far a shader that ignored the probe (flag 0) would be off there.
+template <class Shade>
+double mirroring_host_difference(Shade shade, const std::array<double, 3>& sigma, const std::string& where)
+{
+    const stochtex::Rgb top_down = shade(-1);
+    osl_shim::MirroringHost mirroring;
+    const stochtex::Rgb bottom_up = shade(-1), ignored = shade(0);
+    double unprobed = 0;
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(bottom_up[c], top_down[c]) << where << ", channel " << c;
+        unprobed = std::max(unprobed, std::abs(double(ignored[c]) - top_down[c]) / sigma[c]);
+    }
+    return unprobed;
+}
+
 /// A generated shader compiles on its own: headers inlined, renamed, parameters filled, ASCII.
 inline void expect_self_contained(const std::string& text)
 {
