@@ -478,19 +478,26 @@ float stochtex_scaled_bessel_i0(float x_in)
     return p / sqrt(x);
 }
 
+// Node (i, j) of the table, an n x n image (rows as the host runs them: stochtex_subset.h).
+float stochtex_sphere_node(string table, float n, int rows_bottom_up, int i, int j)
+{
+    return texture(table, (float(i) + 0.5) / n, stochtex_row_t((float(j) + 0.5) / n, rows_bottom_up), "interp", "closest",
+                   "width", 0.0);
+}
+
 // E over the unit sphere of exp(-alpha u1^2 - beta u2^2), interpolated bilinearly in the core's
 // table (log(1 + alpha), log(1 + beta) on a grid of `size` nodes `step` apart).
-float stochtex_sphere_average(string table, int size, float node_step, float alpha, float beta)
+float stochtex_sphere_average(string table, int size, float node_step, int rows_bottom_up, float alpha, float beta)
 {
     float last = float(size - 1);
     float x = min(log(1.0 + max(0.0, alpha)) / node_step, last), y = min(log(1.0 + max(0.0, beta)) / node_step, last);
     int i = stochtex_min_int(int(x), size - 2), j = stochtex_min_int(int(y), size - 2);
     float fx = x - float(i), fy = y - float(j);
     float n = float(size);
-    float v00 = texture(table, (float(i) + 0.5) / n, (float(j) + 0.5) / n, "interp", "closest", "width", 0.0);
-    float v10 = texture(table, (float(i) + 1.5) / n, (float(j) + 0.5) / n, "interp", "closest", "width", 0.0);
-    float v01 = texture(table, (float(i) + 0.5) / n, (float(j) + 1.5) / n, "interp", "closest", "width", 0.0);
-    float v11 = texture(table, (float(i) + 1.5) / n, (float(j) + 1.5) / n, "interp", "closest", "width", 0.0);
+    float v00 = stochtex_sphere_node(table, n, rows_bottom_up, i, j);
+    float v10 = stochtex_sphere_node(table, n, rows_bottom_up, i + 1, j);
+    float v01 = stochtex_sphere_node(table, n, rows_bottom_up, i, j + 1);
+    float v11 = stochtex_sphere_node(table, n, rows_bottom_up, i + 1, j + 1);
     return (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
 }
 
@@ -498,7 +505,7 @@ float stochtex_sphere_average(string table, int size, float node_step, float alp
 // for the isotropic, anisotropic (omega / F = direction) and hybrid kinds.
 float stochtex_gabor_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind, float f, float direction[3],
                               float e1[3], float e2[3], float t[3], float b[3], string table, int table_size,
-                              float table_step)
+                              float table_step, int rows_bottom_up)
 {
     if (filter[10] > 0.0)
         return 1.0;
@@ -518,7 +525,7 @@ float stochtex_gabor_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind
         return filter[9] * exp(-(c0 - r)) * stochtex_scaled_bessel_i0(r);
     }
     float scale = 2.0 * f * f;
-    return filter[9] * stochtex_sphere_average(table, table_size, table_step,
+    return filter[9] * stochtex_sphere_average(table, table_size, table_step, rows_bottom_up,
                                                scale * stochtex_largest_eigenvalue(dxx, dxy, dyy),
                                                scale * max(0.0, stochtex_smallest_eigenvalue(dxx, dxy, dyy)));
 }
@@ -527,11 +534,12 @@ float stochtex_gabor_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind
 // mixed(): random phases leave no cross terms); the other kinds as stochtex_gabor_retained.
 float stochtex_gabor_octave_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], int kind, float octave[], int o,
                                      float direction[3], float e1[3], float e2[3], float t[3], float b[3], string table,
-                                     int table_size, float table_step)
+                                     int table_size, float table_step, int rows_bottom_up)
 {
     float f = octave[o + STOCHTEX_GABOR_FREQUENCY];
     if (kind != STOCHTEX_GABOR_ORIENTED)
-        return stochtex_gabor_retained(filter, kind, f, direction, e1, e2, t, b, table, table_size, table_step);
+        return stochtex_gabor_retained(filter, kind, f, direction, e1, e2, t, b, table, table_size, table_step,
+                                       rows_bottom_up);
     float share = octave[o + STOCHTEX_GABOR_ORIENTED_SHARE];
     float orientation[3];
     for (int e = 0; e < 3; ++e)
@@ -539,10 +547,10 @@ float stochtex_gabor_octave_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], i
     float oriented = 0.0, isotropic = 0.0;
     if (share > 0.0)
         oriented = stochtex_gabor_retained(filter, STOCHTEX_GABOR_ANISOTROPIC, f, orientation, e1, e2, t, b, table,
-                                           table_size, table_step);
+                                           table_size, table_step, rows_bottom_up);
     if (share < 1.0)
         isotropic = stochtex_gabor_retained(filter, STOCHTEX_GABOR_ISOTROPIC, f, orientation, e1, e2, t, b, table,
-                                            table_size, table_step);
+                                            table_size, table_step, rows_bottom_up);
     return share * oriented + (1.0 - share) * isotropic;
 }
 
@@ -551,14 +559,14 @@ float stochtex_gabor_octave_retained(float filter[STOCHTEX_GABOR_FILTER_SIZE], i
 // The texture at p (texture units; 2D: p[2] unused) with the footprint's derivatives dpdx, dpdy
 // (texture units per pixel; 2D: (du, dv, 0)) and, solid, the surface normal nrm. Arrays are
 // flattened: octave[k * STRIDE + field], key_2d/key_3d/oriented_below[4 k + limb], knots as in
-// stochtex_colour.h.
+// stochtex_colour.h; the table read with rows as the host runs them (stochtex_rows_bottom_up).
 void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dpdy[3], float pixels_per_unit,
                     int octave_count, float octave[], int key_2d[], int key_3d[], int oriented_below[], int kind, float direction[3],
                     float direction_length, float e1[3], float e2[3], int channels, float sigma_m[],
                     int knot_count[], float knot_z[], float knot_value[], float knot_slope[], float gh_node[],
                     float gh_weight[], int joint_count, float joint_first, float joint_inverse_step, float joint_curve[],
                     float mean[], float basis[], string sphere_table, int sphere_table_size,
-                    float sphere_table_step, STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
+                    float sphere_table_step, int rows_bottom_up, STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
 {
     float t[3] = { 1.0, 0.0, 0.0 }, bt[3] = { 0.0, 1.0, 0.0 }, n[3] = { 0.0, 0.0, 1.0 };
     float dudx = dpdx[0], dvdx = dpdx[1], dudy = dpdy[0], dvdy = dpdy[1];
@@ -587,7 +595,8 @@ void stochtex_gabor(int solid, float p[3], float nrm[3], float dpdx[3], float dp
             float retained = 0.0;
             if (fade > 0.0)
                 retained = fade * fade * stochtex_gabor_octave_retained(filter, kind, octave, o, direction, e1, e2, t, bt,
-                                                                        sphere_table, sphere_table_size, sphere_table_step);
+                                                                        sphere_table, sphere_table_size, sphere_table_step,
+                                                                        rows_bottom_up);
             for (int c = 0; c < 3; ++c) {
                 float w = octave[o + STOCHTEX_GABOR_WEIGHT + c];
                 dropped[c] += (1.0 - retained) * w * w;

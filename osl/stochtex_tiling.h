@@ -29,6 +29,8 @@
 #define STOCHTEX_TILING_NORMAL_MAP 2
 // Moments: mean[3], then the centred second moments packed as (0,0) (0,1) (0,2) (1,1) (1,2) (2,2).
 #define STOCHTEX_TILING_MOMENTS 9
+// The moment planes per row (and rows) of the atlas image: 3 x 3 (stochtex_tiling_texel).
+#define STOCHTEX_TILING_GRID 3
 
 // The vertex (i, j)'s offset into the exemplar, as the 48 leading bits of the core's 53-bit
 // uniforms: offset = hi / 2^24 + lo / 2^48 (TilingGrid::draw: SplitMix64(mix_seed(seed, i, j))).
@@ -69,13 +71,20 @@ float stochtex_tiling_shift(int offset_hi, int offset_lo, int size_log2, float c
     return a_int - b_int + round(a_frac - (b - b_int) - centre_lo * m);
 }
 
-// One texel's moments from the atlas (level at row offset level_y, size level_w x level_h).
-void stochtex_tiling_texel(string atlas, int atlas_w, int atlas_h, int level_y, int x, int y,
+// One texel's moments from the atlas (level at row offset level_y, size level_w x level_h; rows
+// as the host runs them: stochtex_subset.h). The atlas image holds the 9 moment planes, each
+// atlas_w x atlas_h, as a 3 x 3 grid of one channel (plane k at column k % 3, row k / 3), not as
+// 9 channels: Cycles 5.2 ignores the firstchannel option (a float lookup there returns the
+// file's first channel whatever it asks for); a single-channel texel reads the same everywhere.
+void stochtex_tiling_texel(string atlas, int atlas_w, int atlas_h, int rows_bottom_up, int level_y, int x, int y,
                            STOCHTEX_OUT_ARRAY(float) texel[STOCHTEX_TILING_MOMENTS])
 {
-    float s = (float(x) + 0.5) / float(atlas_w), t = (float(level_y + y) + 0.5) / float(atlas_h);
-    for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k)
-        texel[k] = texture(atlas, s, t, "firstchannel", k, "interp", "closest", "width", 0.0);
+    float grid_w = float(STOCHTEX_TILING_GRID * atlas_w), grid_h = float(STOCHTEX_TILING_GRID * atlas_h);
+    for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k) {
+        float s = (float(x + atlas_w * (k % STOCHTEX_TILING_GRID)) + 0.5) / grid_w;
+        float t = (float(level_y + y + atlas_h * (k / STOCHTEX_TILING_GRID)) + 0.5) / grid_h;
+        texel[k] = texture(atlas, s, stochtex_row_t(t, rows_bottom_up), "interp", "closest", "width", 0.0);
+    }
 }
 
 int stochtex_tiling_wrap(int i, int n)
@@ -84,8 +93,8 @@ int stochtex_tiling_wrap(int i, int n)
 }
 
 // MomentPyramid::sample_level (linear): bilinear between texel centres, with wrap.
-void stochtex_tiling_sample_level(string atlas, int width, int height, int atlas_h, int level, float x, float y,
-                                  STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
+void stochtex_tiling_sample_level(string atlas, int width, int height, int atlas_h, int rows_bottom_up, int level, float x,
+                                  float y, STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
 {
     int level_y = 0;
     for (int l = 0; l < level; ++l)
@@ -108,33 +117,34 @@ void stochtex_tiling_sample_level(string atlas, int width, int height, int atlas
         if (w == 0.0)
             continue;
         float texel[STOCHTEX_TILING_MOMENTS];
-        stochtex_tiling_texel(atlas, width, atlas_h, level_y, corner % 2 == 0 ? ix : jx, corner < 2 ? iy : jy, texel);
+        stochtex_tiling_texel(atlas, width, atlas_h, rows_bottom_up, level_y, corner % 2 == 0 ? ix : jx,
+                              corner < 2 ? iy : jy, texel);
         for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k)
             result[k] += w * texel[k];
     }
 }
 
 // MomentPyramid::sample (linear): levels clamped, interpolated linearly.
-void stochtex_tiling_sample(string atlas, int width, int height, int atlas_h, int level_count, float level_in, float x,
-                            float y, STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
+void stochtex_tiling_sample(string atlas, int width, int height, int atlas_h, int rows_bottom_up, int level_count,
+                            float level_in, float x, float y, STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
 {
     float level = clamp(level_in, 0.0, float(level_count - 1));
     int lower = stochtex_min_int(int(level), level_count - 1);
     float t = level - float(lower);
-    stochtex_tiling_sample_level(atlas, width, height, atlas_h, lower, x, y, result);
+    stochtex_tiling_sample_level(atlas, width, height, atlas_h, rows_bottom_up, lower, x, y, result);
     if (t == 0.0)
         return;
     float upper[STOCHTEX_TILING_MOMENTS];
-    stochtex_tiling_sample_level(atlas, width, height, atlas_h, lower + 1, x, y, upper);
+    stochtex_tiling_sample_level(atlas, width, height, atlas_h, rows_bottom_up, lower + 1, x, y, upper);
     for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k)
         result[k] += t * (upper[k] - result[k]);
 }
 
 // TilingNoise::texel_estimate at (x, y) exemplar pixels: the blend of the three tiles.
 void stochtex_tiling_texel_estimate(float x, float y, float level, string atlas, int width, int height, int size_log2_x,
-                                    int size_log2_y, int atlas_h, int level_count, int seed[4], float edge_x, float edge_y,
-                                    float centre_x_hi, float centre_x_lo, float centre_y_hi, float centre_y_lo,
-                                    float global_mean[3], STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
+                                    int size_log2_y, int atlas_h, int rows_bottom_up, int level_count, int seed[4],
+                                    float edge_x, float edge_y, float centre_x_hi, float centre_x_lo, float centre_y_hi,
+                                    float centre_y_lo, float global_mean[3], STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
 {
     // TilingGrid::blend: skew to the lattice basis (1, 0), (1/2, sqrt(3)/2).
     float sqrt3 = sqrt(3.0);
@@ -180,7 +190,8 @@ void stochtex_tiling_texel_estimate(float x, float y, float level, string atlas,
                                               float(vi[v]) + 0.5 * float(vj[v]));
         float shift_y = stochtex_tiling_shift(hi[1], lo[1], size_log2_y, centre_y_hi, centre_y_lo, float(vj[v]));
         float tile[STOCHTEX_TILING_MOMENTS];
-        stochtex_tiling_sample(atlas, width, height, atlas_h, level_count, level, x + shift_x, y + shift_y, tile);
+        stochtex_tiling_sample(atlas, width, height, atlas_h, rows_bottom_up, level_count, level, x + shift_x, y + shift_y,
+                               tile);
         for (int k = 0; k < STOCHTEX_TILING_MOMENTS; ++k)
             result[k] += k < 3 ? w * (tile[k] - global_mean[k]) : w * w * tile[k];
     }
@@ -207,9 +218,9 @@ void stochtex_tiling_mixture_add(float weight, float part[STOCHTEX_TILING_MOMENT
 // TilingNoise::footprint_estimate: the footprint's columns (dudx, dvdx), (dudy, dvdy) in exemplar pixels.
 void stochtex_tiling_footprint_estimate(float x, float y, float dudx, float dvdx, float dudy, float dvdy, int taps,
                                         int max_taps, string atlas, int width, int height, int size_log2_x,
-                                        int size_log2_y, int atlas_h, int level_count, int seed[4], float edge_x,
-                                        float edge_y, float centre_x_hi, float centre_x_lo, float centre_y_hi,
-                                        float centre_y_lo, float global_mean[3],
+                                        int size_log2_y, int atlas_h, int rows_bottom_up, int level_count, int seed[4],
+                                        float edge_x, float edge_y, float centre_x_hi, float centre_x_lo,
+                                        float centre_y_hi, float centre_y_lo, float global_mean[3],
                                         STOCHTEX_OUT_ARRAY(float) result[STOCHTEX_TILING_MOMENTS])
 {
     float length_a = hypot(dudx, dvdx), length_b = hypot(dudy, dvdy);
@@ -226,9 +237,9 @@ void stochtex_tiling_footprint_estimate(float x, float y, float dudx, float dvdx
     float piece = max(length_a / float(na), length_b / float(nb));
     float level = piece > 1.0 ? log2(piece) : 0.0;
     if (na == 1 && nb == 1) {
-        stochtex_tiling_texel_estimate(x, y, level, atlas, width, height, size_log2_x, size_log2_y, atlas_h, level_count,
-                                       seed, edge_x, edge_y, centre_x_hi, centre_x_lo, centre_y_hi, centre_y_lo,
-                                       global_mean, result);
+        stochtex_tiling_texel_estimate(x, y, level, atlas, width, height, size_log2_x, size_log2_y, atlas_h,
+                                       rows_bottom_up, level_count, seed, edge_x, edge_y, centre_x_hi, centre_x_lo,
+                                       centre_y_hi, centre_y_lo, global_mean, result);
         return;
     }
     float total_weight = 0.0;
@@ -240,8 +251,8 @@ void stochtex_tiling_footprint_estimate(float x, float y, float dudx, float dvdx
             float s = (float(ti) + 0.5) / float(na) - 0.5, t = (float(tj) + 0.5) / float(nb) - 0.5;
             float tap[STOCHTEX_TILING_MOMENTS];
             stochtex_tiling_texel_estimate(x + s * dudx + t * dudy, y + s * dvdx + t * dvdy, level, atlas, width, height,
-                                           size_log2_x, size_log2_y, atlas_h, level_count, seed, edge_x, edge_y,
-                                           centre_x_hi, centre_x_lo, centre_y_hi, centre_y_lo, global_mean, tap);
+                                           size_log2_x, size_log2_y, atlas_h, rows_bottom_up, level_count, seed, edge_x,
+                                           edge_y, centre_x_hi, centre_x_lo, centre_y_hi, centre_y_lo, global_mean, tap);
             stochtex_tiling_mixture_add(weight, tap, total_weight, result);
         }
     }
@@ -250,11 +261,11 @@ void stochtex_tiling_footprint_estimate(float x, float y, float dudx, float dvdx
 }
 
 // The texture at (u, v) (texture units) with the footprint (dudx, dvdx), (dudy, dvdy) (texture
-// units per pixel).
+// units per pixel); the atlas read with rows as the host runs them (stochtex_rows_bottom_up).
 void stochtex_tiling(float tex_u, float tex_v, float dudx, float dvdx, float dudy, float dvdy, float pixels_per_unit,
                      int output_kind, int taps, int max_taps, string atlas, int width, int height, int atlas_h,
-                     int level_count, int seed[4], float edge_x, float edge_y, float centre_x_hi, float centre_x_lo,
-                     float centre_y_hi, float centre_y_lo, float global_mean[3], int knot_count[], float knot_z[],
+                     int rows_bottom_up, int level_count, int seed[4], float edge_x, float edge_y, float centre_x_hi,
+                     float centre_x_lo, float centre_y_hi, float centre_y_lo, float global_mean[3], int knot_count[], float knot_z[],
                      float knot_value[], float knot_slope[], float gh_node[], float gh_weight[], float mean[],
                      float basis[], STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
 {
@@ -262,8 +273,8 @@ void stochtex_tiling(float tex_u, float tex_v, float dudx, float dvdx, float dud
     float m[STOCHTEX_TILING_MOMENTS];
     float ppu = pixels_per_unit;
     stochtex_tiling_footprint_estimate(tex_u * ppu, tex_v * ppu, dudx * ppu, dvdx * ppu, dudy * ppu, dvdy * ppu, taps, max_taps,
-                                       atlas, width, height, size_log2_x, size_log2_y, atlas_h, level_count, seed,
-                                       edge_x, edge_y, centre_x_hi, centre_x_lo, centre_y_hi, centre_y_lo, global_mean, m);
+                                       atlas, width, height, size_log2_x, size_log2_y, atlas_h, rows_bottom_up, level_count,
+                                       seed, edge_x, edge_y, centre_x_hi, centre_x_lo, centre_y_hi, centre_y_lo, global_mean, m);
     if (output_kind == STOCHTEX_TILING_NORMAL_MAP) {
         // normal_from_slopes: (-sx, -sy, 1) normalised, encoded n / 2 + 1/2.
         float norm_length = sqrt(m[0] * m[0] + m[1] * m[1] + 1.0);

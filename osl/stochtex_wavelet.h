@@ -37,25 +37,26 @@ int stochtex_wrap(int i, int n)
     return ((i % n) + n) % n;
 }
 
-// Coefficient (i, j) of a size x size tile stored as an image of that size.
-float stochtex_tile2(string tile, int size, int i, int j)
+// Coefficient (i, j) of a size x size tile stored as an image of that size (rows as the host
+// runs them: stochtex_subset.h).
+float stochtex_tile2(string tile, int size, int rows_bottom_up, int i, int j)
 {
     float x = float(stochtex_wrap(i, size)), y = float(stochtex_wrap(j, size));
-    float c = texture(tile, (x + 0.5) / float(size), (y + 0.5) / float(size), "interp", "closest", "width", 0.0,
-                      "wrap", "periodic");
+    float c = texture(tile, (x + 0.5) / float(size), stochtex_row_t((y + 0.5) / float(size), rows_bottom_up), "interp",
+                      "closest", "width", 0.0, "wrap", "periodic");
     return c;
 }
 
 // Coefficient (i, j, k) of a size^3 tile stored as an atlas image of per_row x per_row slices
 // (slice k at column k mod per_row, row k / per_row).
-float stochtex_tile3(string tile, int size, int per_row, int i, int j, int k)
+float stochtex_tile3(string tile, int size, int per_row, int rows_bottom_up, int i, int j, int k)
 {
     int z = stochtex_wrap(k, size);
     float x = float(stochtex_wrap(i, size) + size * (z % per_row));
     float y = float(stochtex_wrap(j, size) + size * (z / per_row));
     float atlas = float(size * per_row);
-    float c = texture(tile, (x + 0.5) / atlas, (y + 0.5) / atlas, "interp", "closest", "width", 0.0,
-                      "wrap", "periodic");
+    float c = texture(tile, (x + 0.5) / atlas, stochtex_row_t((y + 0.5) / atlas, rows_bottom_up), "interp", "closest",
+                      "width", 0.0, "wrap", "periodic");
     return c;
 }
 
@@ -71,7 +72,7 @@ int stochtex_spline(float x, STOCHTEX_OUT(float) w0, STOCHTEX_OUT(float) w1, STO
     return int(base);
 }
 
-float stochtex_noise2(string tile, int size, float x, float y)
+float stochtex_noise2(string tile, int size, int rows_bottom_up, float x, float y)
 {
     float wx0 = 0.0, wx1 = 0.0, wx2 = 0.0, wy0 = 0.0, wy1 = 0.0, wy2 = 0.0;
     int i = stochtex_spline(x, wx0, wx1, wx2);
@@ -79,14 +80,15 @@ float stochtex_noise2(string tile, int size, float x, float y)
     float sum = 0.0;
     for (int r = 0; r < 3; ++r) {
         float wy = r == 0 ? wy0 : (r == 1 ? wy1 : wy2);
-        float row = wx0 * stochtex_tile2(tile, size, i, j + r) + wx1 * stochtex_tile2(tile, size, i + 1, j + r) +
-                    wx2 * stochtex_tile2(tile, size, i + 2, j + r);
+        float row = wx0 * stochtex_tile2(tile, size, rows_bottom_up, i, j + r) +
+                    wx1 * stochtex_tile2(tile, size, rows_bottom_up, i + 1, j + r) +
+                    wx2 * stochtex_tile2(tile, size, rows_bottom_up, i + 2, j + r);
         sum += wy * row;
     }
     return sum;
 }
 
-float stochtex_noise3(string tile, int size, int per_row, float x, float y, float z)
+float stochtex_noise3(string tile, int size, int per_row, int rows_bottom_up, float x, float y, float z)
 {
     float wx0 = 0.0, wx1 = 0.0, wx2 = 0.0, wy0 = 0.0, wy1 = 0.0, wy2 = 0.0, wz0 = 0.0, wz1 = 0.0, wz2 = 0.0;
     int i = stochtex_spline(x, wx0, wx1, wx2);
@@ -98,9 +100,9 @@ float stochtex_noise3(string tile, int size, int per_row, float x, float y, floa
         float plane = 0.0;
         for (int r = 0; r < 3; ++r) {
             float wy = r == 0 ? wy0 : (r == 1 ? wy1 : wy2);
-            float row = wx0 * stochtex_tile3(tile, size, per_row, i, j + r, k + p) +
-                        wx1 * stochtex_tile3(tile, size, per_row, i + 1, j + r, k + p) +
-                        wx2 * stochtex_tile3(tile, size, per_row, i + 2, j + r, k + p);
+            float row = wx0 * stochtex_tile3(tile, size, per_row, rows_bottom_up, i, j + r, k + p) +
+                        wx1 * stochtex_tile3(tile, size, per_row, rows_bottom_up, i + 1, j + r, k + p) +
+                        wx2 * stochtex_tile3(tile, size, per_row, rows_bottom_up, i + 2, j + r, k + p);
             plane += wy * row;
         }
         sum += wz * plane;
@@ -135,7 +137,8 @@ float stochtex_major_axis_3d(float nx, float ny, float nz, float ax, float ay, f
 
 // The texture at point (x, y, z) in texture units (2D: z unused), footprint_px exemplar pixels
 // wide. Arrays are flattened: weight[c * MAX_BANDS + j], offset[(c * MAX_BANDS + j) * 3 + axis],
-// knots[c * MAX_KNOTS + k] with knot_count[c] knots (0: no histogram map).
+// knots[c * MAX_KNOTS + k] with knot_count[c] knots (0: no histogram map); the tiles read with
+// rows as the host runs them (stochtex_rows_bottom_up).
 void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
                       int band_count, float scale[], float weight[], float offset[],
                       float sigma_m[], float sigma_n2, float solid_gain,
@@ -143,7 +146,7 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
                       float gh_node[], float gh_weight[],
                       int joint_count, float joint_first, float joint_inverse_step, float joint_curve[],
                       float mean[], float basis[],
-                      string tile_2d, int size_2d, string tile_3d, int size_3d, int per_row_3d,
+                      string tile_2d, int size_2d, string tile_3d, int size_3d, int per_row_3d, int rows_bottom_up,
                       STOCHTEX_OUT(float) r, STOCHTEX_OUT(float) g, STOCHTEX_OUT(float) b)
 {
     float fade[STOCHTEX_MAX_BANDS];
@@ -160,9 +163,9 @@ void stochtex_wavelet(int solid, float x, float y, float z, float footprint_px,
             if (fade[j] > 0.0 && w != 0.0) {
                 int o = (c * STOCHTEX_MAX_BANDS + j) * 3;
                 float s = scale[j];
-                float n = solid ? stochtex_noise3(tile_3d, size_3d, per_row_3d, x * s + offset[o], y * s + offset[o + 1],
-                                                  z * s + offset[o + 2])
-                                : stochtex_noise2(tile_2d, size_2d, x * s + offset[o], y * s + offset[o + 1]);
+                float n = solid ? stochtex_noise3(tile_3d, size_3d, per_row_3d, rows_bottom_up, x * s + offset[o],
+                                                  y * s + offset[o + 1], z * s + offset[o + 2])
+                                : stochtex_noise2(tile_2d, size_2d, rows_bottom_up, x * s + offset[o], y * s + offset[o + 1]);
                 kept += fade[j] * w * n;
             }
         }

@@ -109,6 +109,15 @@ const char* probe_shader = R"(shader stochtex_probe(
     Position = color(Vector[0], Vector[1], Vector[2]);
 }
 )";
+
+/// What the generated shaders' row probe reads in this host (osl/stochtex_subset.h): 0 where
+/// texture() runs rows top-down, 1 where bottom-up. Reported, so a run says which way it went.
+std::string rows_shader(const std::string& probe)
+{
+    return "shader stochtex_rows(string probe = \"" + probe + "\", output color Rows = 0)\n"
+           "{\n    Rows = color(texture(probe, 0.5, 0.25, \"interp\", \"closest\", \"width\", 0.0));\n}\n";
+}
+
 std::string blender_command(const std::string& jobs, const std::string& out)
 {
     return "env TMPDIR=" + test::shell_quote(out) + " timeout 900 blender -b --factory-startup --python " +
@@ -250,6 +259,9 @@ BlenderRun make_run(bool render)
         jobs.push_back({{"name", c.name}, {"osl", dir + "/" + c.name + ".osl"}, {"output", "Color"}, {"render", render},
                         {"inputs", inputs}});
     }
+    // The row probe every generated shader here reads (one file, beside them), read on its own.
+    std::ofstream(dir + "/rows.osl") << rows_shader(osl::osl_image_paths(run.cases.front().description, dir, "").rows_probe);
+    jobs.push_back({{"name", "probe_rows"}, {"osl", dir + "/rows.osl"}, {"output", "Rows"}, {"render", render}});
     std::ofstream(dir + "/jobs.json") << jobs.dump(2);
     run.blender = test::run_command(blender_command(dir + "/jobs.json", dir));
     if (run.blender.status == 0) {
@@ -320,6 +332,13 @@ TEST(CyclesOsl, RendersMatchTheCore)
     EXPECT_LT(skew, 1e-3);
     EXPECT_LT(out_of_plane, 1e-3);
     EXPECT_LT(offset, 0.01) << "the render does not frame the unit square pixel for pixel";
+
+    // Which way this host runs rows: the shaders adapt (the comparisons below hold either way).
+    ASSERT_TRUE(report["jobs"]["probe_rows"]["compiled"].get<bool>());
+    const Image rows = read_image_linear(dir + "/probe_rows.exr");
+    const double row_probe = rows.at(size / 2, size / 2, 0);
+    std::printf("row probe: %.6g (texture() rows run %s in this host)\n", row_probe, row_probe > 0.5 ? "bottom-up" : "top-down");
+    EXPECT_LT(std::min(std::abs(row_probe), std::abs(row_probe - 1)), 1e-3) << "the probe's texels are 0 and 1";
 
     for (std::size_t i = 0; i < run.cases.size(); ++i) {
         const Case& c = run.cases[i];

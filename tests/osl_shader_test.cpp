@@ -58,11 +58,14 @@ public:
         text = osl::make_osl_shader(description, options);
         osl::write_osl_images(description, options.images);
         p_ = parse_parameters(text);
-        for (const char* name : {"tile_2d", "tile_3d"}) osl_shim::load_image(p_.strings.at(name));
+        for (const char* name : {"tile_2d", "tile_3d", "rows_probe"}) osl_shim::load_image(p_.strings.at(name));
     }
 
-    Rgb eval(bool solid, double x, double y, double z, double footprint_px)
+    /// As the shader: the row probe read first (rows_bottom_up < 0), then the texture; or with
+    /// the row flag given (a shader that ignored the probe would pass 0).
+    Rgb eval(bool solid, double x, double y, double z, double footprint_px, int rows_bottom_up = -1)
     {
+        if (rows_bottom_up < 0) rows_bottom_up = osl_shim::stochtex_rows_bottom_up(p_.s("rows_probe"));
         std::vector<int> knot_count;
         for (float c : p_.arrays.at("knot_count")) knot_count.push_back(int(c));
         float r = 0, g = 0, b = 0;
@@ -74,7 +77,7 @@ public:
                                    a("mean"), a("basis"),
                                    p_.strings.at("tile_2d").c_str(), int(p_.scalars.at("size_2d")),
                                    p_.strings.at("tile_3d").c_str(), int(p_.scalars.at("size_3d")),
-                                   int(p_.scalars.at("per_row_3d")), r, g, b);
+                                   int(p_.scalars.at("per_row_3d")), rows_bottom_up, r, g, b);
         return {r, g, b};
     }
     float ppu() const { return p_.scalars.at("pixels_per_unit"); }
@@ -200,6 +203,26 @@ TEST(OslShader, JointColourMatchesCore)
         EXPECT_LT(worst_sigma, joint_tolerance_sigma) << (solid ? "solid" : "2D");
     }
     EXPECT_GT(effect, 100 * joint_tolerance_sigma) << "the test texture's joint colour should matter";
+}
+
+// A host whose texture() runs rows bottom-up (Cycles 5.2) gets the same texture through the row
+// probe, bit for bit, 2D and solid; the shader without it (flag 0 there) reads other coefficients.
+TEST(OslShader, MirroringHostGivesTheSameTextureThroughTheRowProbe)
+{
+    const TextureDescription description = concrete(HistogramMode::on);
+    ShimShader shader(description, test::temp_dir("oslrows"));
+    const std::array<double, 3> sigma = osl_test::channel_sigmas(*make_texture(description));
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> position(-3.0, 3.0), log_footprint(-3.0, 6.0);
+    for (const bool solid : {false, true}) {
+        double unprobed = 0;  // in σ: the largest difference a shader ignoring the probe would show
+        for (int i = 0; i < 100; ++i) {
+            const double x = position(rng), y = position(rng), z = position(rng), footprint = std::exp2(log_footprint(rng));
+            const auto shade = [&](int rows) { return shader.eval(solid, x, y, z, footprint, rows); };
+            unprobed = std::max(unprobed, osl_test::mirroring_host_difference(shade, sigma, "point " + std::to_string(i)));
+        }
+        EXPECT_GT(unprobed, 0.5) << (solid ? "solid" : "2D") << ": the mirrored host must read other texels";
+    }
 }
 
 TEST(OslShader, GeneratedShaderIsSelfContained)

@@ -4,10 +4,13 @@
 //
 // texture() is OIIO's closest-texel lookup with periodic wrap (what the shaders ask for): texel
 // floor(s·width), floor(t·height) of the image file the generated shader names, channel
-// "firstchannel". The images are read with OIIO from the very files `stex osl` writes, so the
-// test covers the generator, the images and the transcription together. What it cannot check is
-// OSL's own syntax and runtime (float literals are double in C++, so a few constant expressions
-// round less than in OSL): the oslc/testshade tests do, where OSL is installed.
+// "firstchannel", rows top-down as OIIO runs them — or, while a test sets mirroring_host() (a
+// host such as Cycles 5.2, whose rows run bottom-up), row height − 1 − that: the row probe
+// (osl/stochtex_subset.h) must then make the shader read the same texels. The images are read
+// with OIIO from the very files `stex osl` writes, so the test covers the generator, the images
+// and the transcription together. What it cannot check is OSL's own syntax and runtime (float
+// literals are double in C++, so a few constant expressions round less than in OSL): the
+// oslc/testshade tests do, where OSL is installed.
 #pragma once
 
 #include <stochtex/error.h>
@@ -94,6 +97,21 @@ inline Image read_image(const std::string& path)
 /// Loads the file a shader parameter names (again: a test may rewrite it for another texture).
 inline void load_image(const std::string& path) { images()[path] = read_image(path); }
 
+/// Whether texture() runs rows bottom-up, as Cycles 5.2 does (false: top-down, as OIIO).
+inline bool& mirroring_host()
+{
+    static bool bottom_up = false;
+    return bottom_up;
+}
+
+/// texture() runs rows bottom-up while one of these lives (so a failed assertion resets it too).
+struct MirroringHost {
+    MirroringHost() { mirroring_host() = true; }
+    ~MirroringHost() { mirroring_host() = false; }
+    MirroringHost(const MirroringHost&) = delete;
+    MirroringHost& operator=(const MirroringHost&) = delete;
+};
+
 inline int first_channel_of() { return 0; }
 template <class V, class... Rest>
 int first_channel_of(const char* key, V value, Rest... rest)
@@ -109,14 +127,20 @@ float texture(string name, float s, float t, Options... options)
     const Image& image = images().at(name);
     const int x = int(std::floor(s * image.width)), y = int(std::floor(t * image.height));
     const int wx = ((x % image.width) + image.width) % image.width, wy = ((y % image.height) + image.height) % image.height;
+    const int row = mirroring_host() ? image.height - 1 - wy : wy;
     const int channel = first_channel_of(options...);
-    return image.texels[(std::size_t(wy) * image.width + wx) * image.channels + std::size_t(channel)];
+    return image.texels[(std::size_t(row) * image.width + wx) * image.channels + std::size_t(channel)];
 }
 
 }  // namespace osl_shim
 
 #define STOCHTEX_OUT(type) type&
 #define STOCHTEX_OUT_ARRAY(type) type
+
+// The row probe's reader (stochtex_rows_bottom_up) and stochtex_row_t, over the texture() above.
+namespace osl_shim {
+#include "../osl/stochtex_subset.h"
+}  // namespace osl_shim
 
 namespace osl_test {
 
@@ -222,12 +246,32 @@ inline double testshade_rms_sigma(const stochtex::Image& core, const stochtex::I
     return worst;
 }
 
+/// One point in a top-down host and in a mirroring one (Cycles 5.2): `shade(rows)` evaluates a
+/// shader with its row flag read from its probe (rows < 0) or given. Fails unless the mirroring
+/// host gives the top-down values bit for bit through the probe; returns, in units of `sigma`,
+/// how far a shader that ignored the probe (flag 0) would be off there.
+template <class Shade>
+double mirroring_host_difference(Shade shade, const std::array<double, 3>& sigma, const std::string& where)
+{
+    const stochtex::Rgb top_down = shade(-1);
+    osl_shim::MirroringHost mirroring;
+    const stochtex::Rgb bottom_up = shade(-1), ignored = shade(0);
+    double unprobed = 0;
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(bottom_up[c], top_down[c]) << where << ", channel " << c;
+        unprobed = std::max(unprobed, std::abs(double(ignored[c]) - top_down[c]) / sigma[c]);
+    }
+    return unprobed;
+}
+
 /// A generated shader compiles on its own: headers inlined, renamed, parameters filled, ASCII.
 inline void expect_self_contained(const std::string& text)
 {
     EXPECT_EQ(text.find("#include"), std::string::npos) << "the headers must be inlined";
     EXPECT_NE(text.find("shader stochtex_test("), std::string::npos);
     EXPECT_EQ(text.find("@stochtex-parameters"), std::string::npos);
+    // Cycles 5.2 ignores texture()'s "firstchannel": every lookup must read a single-channel image.
+    EXPECT_EQ(text.find("\"firstchannel\""), std::string::npos) << "Cycles 5.2 reads channel 0 whatever is asked";
     for (char c : text) ASSERT_LT((unsigned char)c, 128) << "oslc reads ASCII safely; keep shaders ASCII";
 }
 

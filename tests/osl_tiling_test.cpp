@@ -66,16 +66,20 @@ public:
         osl::write_osl_images(description, options.images);
         p = osl_test::parse_parameters(text);
         osl_shim::load_image(p.s("moments"));
+        osl_shim::load_image(p.s("rows_probe"));
     }
 
-    Rgb eval(double u, double v, const Footprint2D& f)
+    /// As the shader: the row probe read first (rows_bottom_up < 0), then the texture; or with
+    /// the row flag given (a shader that ignored the probe would pass 0).
+    Rgb eval(double u, double v, const Footprint2D& f, int rows_bottom_up = -1)
     {
+        if (rows_bottom_up < 0) rows_bottom_up = osl_shim::stochtex_rows_bottom_up(p.s("rows_probe"));
         float r = 0, g = 0, b = 0;
         osl_shim::stochtex_tiling(float(u), float(v), float(f.dudx), float(f.dvdx), float(f.dudy), float(f.dvdy),
                                   p.f("pixels_per_unit"), p.n("output_kind"), p.n("taps"), p.n("max_taps"), p.s("moments"),
-                                  p.n("width"), p.n("height"), p.n("atlas_height"), p.n("level_count"), p.i("seed"),
-                                  p.f("edge_x"), p.f("edge_y"), p.f("centre_x_hi"), p.f("centre_x_lo"), p.f("centre_y_hi"),
-                                  p.f("centre_y_lo"), p.a("global_mean"), p.i("knot_count"), p.a("knot_z"),
+                                  p.n("width"), p.n("height"), p.n("atlas_height"), rows_bottom_up, p.n("level_count"),
+                                  p.i("seed"), p.f("edge_x"), p.f("edge_y"), p.f("centre_x_hi"), p.f("centre_x_lo"),
+                                  p.f("centre_y_hi"), p.f("centre_y_lo"), p.a("global_mean"), p.i("knot_count"), p.a("knot_z"),
                                   p.a("knot_value"), p.a("knot_slope"), p.a("gh_node"), p.a("gh_weight"), p.a("mean"),
                                   p.a("basis"), r, g, b);
         return {r, g, b};
@@ -205,6 +209,30 @@ TEST(OslTilingShader, ColourOutputMatchesCore)
 TEST(OslTilingShader, NormalMapOutputMatchesCore)
 {
     expect_agreement(compare(normal_map_tiling(), 250, "normal map"));
+}
+
+// A host whose texture() runs rows bottom-up (Cycles 5.2) gets the same texture through the row
+// probe, bit for bit, at every footprint class (each pyramid level's rows); the shader without it
+// (flag 0 there) reads the atlas mirrored: other texels, other levels' rows.
+TEST(OslTilingShader, MirroringHostGivesTheSameTextureThroughTheRowProbe)
+{
+    const TextureDescription description = colour_tiling(HistogramMode::on);
+    TilingShim shim(description, test::temp_dir("osltilingrows"));
+    const double ppu = description.pixels_per_unit;
+    const std::array<double, 3> sigma = osl_test::channel_sigmas(*make_texture(description));
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> position(-3.0, 3.0), angle(0, 2 * M_PI);
+    double unprobed = 0;  // in σ: the largest difference a shader ignoring the probe would show
+    for (const FootprintClass& fc : footprint_classes) {
+        for (int n = 0; n < 40; ++n) {
+            const double u = position(rng), v = position(rng), a = angle(rng);
+            const double major = fc.size_px * fc.anisotropy / ppu, minor = fc.size_px / ppu;
+            const Footprint2D f{std::cos(a) * major, std::sin(a) * major, -std::sin(a) * minor, std::cos(a) * minor};
+            const auto shade = [&](int rows) { return shim.eval(u, v, f, rows); };
+            unprobed = std::max(unprobed, osl_test::mirroring_host_difference(shade, sigma, fc.name));
+        }
+    }
+    EXPECT_GT(unprobed, 0.5) << "the mirrored host must read other texels";
 }
 
 TEST(OslTilingShader, ColourMapOutputIsRefusedWithAReason)

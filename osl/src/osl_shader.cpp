@@ -8,6 +8,7 @@
 #include <stochtex/models/wavelet_shader_data.h>
 
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -24,7 +25,7 @@ namespace {
 constexpr int max_bands = 24, max_knots = 64, gh_count = 12, max_joint_knots = 64;
 constexpr int max_octaves = 24, octave_stride = 16;
 constexpr int atlas_per_row = 8;  // 64 slices of the 3D tile as 8 × 8
-constexpr int moment_channels = 9;
+constexpr int moment_channels = 9, moment_grid = 3;  // osl/stochtex_tiling.h: STOCHTEX_TILING_MOMENTS, _GRID
 
 std::string number(double value)
 {
@@ -97,7 +98,9 @@ std::string instantiate(const std::string& file, const std::string& template_nam
     const std::size_t from = text.find(begin), to = text.find(end);
     if (from == std::string::npos || to == std::string::npos || to < from)
         throw Error("OSL shader template: parameter markers not found (build is inconsistent)");
-    text.replace(from, to + end.size() - from, parameters);
+    // Every shader reads the row probe first (stochtex_subset.h), so the block starts with it.
+    const std::string probe = "    string rows_probe = " + quoted(options.images.rows_probe) + ",\n";
+    text.replace(from, to + end.size() - from, probe + parameters);
     std::set<std::string> inlined;
     text = inline_includes(text, inlined);
     text = replace_once(text, "shader " + template_name + "(", "shader " + options.shader_name + "(");
@@ -335,7 +338,10 @@ OslImagePaths osl_image_paths(const TextureDescription& description, const std::
         paths.sphere_table = (dir / "stochtex_gabor_sphere.exr").string();
     } else if (description.model == "tiling") {
         paths.moments = (dir / (shader_stem + "_moments.exr")).string();
+    } else {
+        return paths;  // no transcription, no images
     }
+    paths.rows_probe = (dir / "stochtex_rows.exr").string();
     return paths;
 }
 
@@ -353,6 +359,13 @@ std::string make_osl_shader(const TextureDescription& description, const OslShad
 
 void write_osl_images(const TextureDescription& description, const OslImagePaths& files)
 {
+    if (!files.rows_probe.empty()) {
+        // 8 x 8 texels, not 1 x 2: an image one texel high or wide is one a host may treat specially.
+        constexpr int probe_size = 8;
+        std::vector<float> probe(probe_size * probe_size, 0.0f);
+        std::fill(probe.begin() + probe.size() / 2, probe.end(), 1.0f);  // the bottom half
+        write_float_exr(files.rows_probe, probe_size, probe_size, {"Y"}, probe.data(), "row probe");
+    }
     if (description.model == "wavelet") write_noise_tiles(files.tile_2d, files.tile_3d);
     if (description.model == "gabor") {
         const GaborSphereTable table = gabor_sphere_table();
@@ -360,10 +373,15 @@ void write_osl_images(const TextureDescription& description, const OslImagePaths
     }
     if (description.model == "tiling") {
         const TilingShaderData data = tiling_shader_data(description);
-        // Names that sort as they are ordered: EXR stores channels alphabetically.
-        std::vector<std::string> names;
-        for (int c = 0; c < moment_channels; ++c) names.push_back("m" + std::to_string(c));
-        write_float_exr(files.moments, data.width, data.atlas_height, names, data.atlas.data(), "moment pyramid");
+        // The 9 moment planes as a 3 x 3 grid of one channel (stochtex_tiling_texel says why).
+        const int w = data.width, h = data.atlas_height, grid_w = moment_grid * w;
+        std::vector<float> planes(std::size_t(moment_channels) * w * h);
+        for (int k = 0; k < moment_channels; ++k)
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    planes[std::size_t(y + h * (k / moment_grid)) * grid_w + x + w * (k % moment_grid)] =
+                        data.atlas[(std::size_t(y) * w + x) * moment_channels + k];
+        write_float_exr(files.moments, grid_w, moment_grid * h, {"Y"}, planes.data(), "moment pyramid");
     }
 }
 

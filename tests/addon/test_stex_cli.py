@@ -160,9 +160,11 @@ class StexCliTest(unittest.TestCase):
         with open(shader) as f:
             text = f.read()
         self.assertIn("shader stochtex_t(", text)
-        # The images the add-on copies beside the blend: the wavelet shader's two noise tiles.
+        # The images the add-on copies beside the blend: the wavelet shader's two noise tiles and
+        # the row probe every generated shader reads.
         images = stex_cli.shader_images(text)
-        self.assertEqual(sorted(os.path.basename(p) for p in images), ["stochtex_noise_2d.exr", "stochtex_noise_3d.exr"])
+        self.assertEqual(sorted(os.path.basename(p) for p in images),
+                         ["stochtex_noise_2d.exr", "stochtex_noise_3d.exr", "stochtex_rows.exr"])
         for path in images:
             self.assertTrue(os.path.isfile(path), path)
 

@@ -5,7 +5,8 @@
 // generated shader is the template with the headers inlined and the texture's numbers (the
 // core's <model>_shader_data.h) as its parameters' defaults: one self-contained file. It reads a
 // few images with closest-texel texture() lookups — wavelet: two noise tiles; gabor: the
-// sphere-average table; tiling: the exemplar's moment pyramid — which write_osl_images() writes.
+// sphere-average table; tiling: the exemplar's moment pyramid; and every model the row probe that
+// tells the shader which way the host's texture() runs rows — which write_osl_images() writes.
 #pragma once
 
 #include <stochtex/texture_description.h>
@@ -24,6 +25,7 @@ struct OslImagePaths {
     std::string tile_2d, tile_3d;  ///< wavelet: the noise tiles (stochtex_noise_2d.exr, _3d.exr)
     std::string sphere_table;      ///< gabor: the retained-variance table (stochtex_gabor_sphere.exr)
     std::string moments;           ///< tiling: the moment pyramid (<shader>_moments.exr)
+    std::string rows_probe;        ///< every model with a shader: the row probe (stochtex_rows.exr)
 };
 
 /// The paths of the images a description's shader reads, in `folder`; `shader_stem` names the
