@@ -3,7 +3,7 @@
 // A transcription of the core's GaborTexture::eval / eval_solid (core/src/models/gabor/) with the
 // numbers of core/include/stochtex/models/gabor_shader_data.h:
 //   - the footprint (dP/dx, dP/dy) becomes the pixel Gaussian's covariance, anisotropy clamped,
-//     less the exemplar pixel's own blur (raster/footprint_filter.h);
+//     less the exemplar pixel's own blur (filtering/footprint_filter.h);
 //   - per octave, the A-form filter A = I + 2 pi a^2 Sigma_f of every kernel (gabor_kernel.h), the
 //     octave's fade by the filtered support's area, and - with histogram maps - the variance the
 //     filter removed (gabor_statistics.h) for the Gauss-Hermite histogram filter;
@@ -72,7 +72,7 @@ float stochtex_smallest_eigenvalue(float xx, float xy, float yy)
     return half_trace - sqrt(max(0.0, 0.25 * (xx - yy) * (xx - yy) + xy * xy));
 }
 
-// filter_covariance (raster/footprint_filter.cpp): sigma^2 J J^T of the half-pixel Gaussian, J's
+// filter_covariance (filtering/footprint_filter.cpp): sigma^2 J J^T of the half-pixel Gaussian, J's
 // columns the derivatives along screen x (dudx, dvdx) and y (dudy, dvdy), times scale^2; axes
 // clamped to an anisotropy of 8.
 void stochtex_filter_covariance(float dudx, float dvdx, float dudy, float dvdy, float scale,
@@ -171,7 +171,7 @@ float stochtex_gabor_fade(float spread)
     return 1.0 - t * t * (3.0 - 2.0 * t);
 }
 
-// tangent_frame (raster/footprint_filter.cpp): n normalised, t along dP/dx's tangential part.
+// tangent_frame (filtering/footprint_filter.cpp): n normalised, t along dP/dx's tangential part.
 void stochtex_tangent_frame(float nrm[3], float dpdx[3], STOCHTEX_OUT_ARRAY(float) t[3], STOCHTEX_OUT_ARRAY(float) b[3],
                             STOCHTEX_OUT_ARRAY(float) n[3])
 {

@@ -171,7 +171,7 @@ TEST(ImageCodec, GreyPngInMemoryIsOiiosEncoding)
         std::vector<std::uint16_t> samples(std::size_t(width) * height);
         std::mt19937 random(bits);
         for (auto& s : samples) s = std::uint16_t(random() % (bits == 16 ? 65536 : 256));
-        // The encoder stochtex used before (stex/quantised_image.cpp through OIIO).
+        // The encoder stochtex used before (schema/quantised_image.cpp, then in stex/, through OIIO).
         const OIIO::TypeDesc type = bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
         std::vector<std::uint8_t> narrow(samples.begin(), samples.end());
         std::vector<unsigned char> expected;
