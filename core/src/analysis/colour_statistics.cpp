@@ -1,7 +1,5 @@
 // stochtex — colour statistics of an RGB image: channel means, colour covariance, CIELAB chroma
 // and the false-colour rate (analysis/colour_statistics.h).
-#include <stochtex/metrics.h>
-
 #include "analysis/colour_statistics.h"
 
 #include <stochtex/error.h>

@@ -6,6 +6,7 @@
 
 #include "analysis/colour_statistics.h"
 #include "analysis/distribution_distances.h"
+#include "analysis/gradient_statistics.h"
 #include "analysis/spectral_distances.h"
 #include "analysis/structure_statistics.h"
 

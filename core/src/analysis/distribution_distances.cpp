@@ -1,10 +1,9 @@
 // stochtex — 1-Wasserstein distances between samples and between circular histograms
 // (metrics.h and analysis/distribution_distances.h).
-#include <stochtex/metrics.h>
-
 #include "analysis/distribution_distances.h"
 
 #include <stochtex/error.h>
+#include <stochtex/metrics.h>
 
 #include <algorithm>
 #include <cmath>

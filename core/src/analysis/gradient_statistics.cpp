@@ -1,6 +1,6 @@
 // stochtex — gradient orientation and sharpness statistics of a plane
-// (metrics.h).
-#include <stochtex/metrics.h>
+// (analysis/gradient_statistics.h).
+#include "analysis/gradient_statistics.h"
 
 #include <stochtex/error.h>
 
