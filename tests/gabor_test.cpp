@@ -7,6 +7,7 @@
 // recovers known per-octave orientations.
 #include "test_support.h"
 
+#include "analysis/colour_statistics.h"
 #include "models/gabor/gabor_fit.h"
 #include "models/gabor/gabor_kernel.h"
 #include "models/gabor/gabor_noise.h"

@@ -14,6 +14,7 @@
 #include <stochtex/texture.h>
 #include <stochtex/models/shader_colour_data.h>
 
+#include "analysis/colour_statistics.h"
 #include "colour/chroma_given_brightness.h"
 #include "colour/colour_mapping.h"
 #include "colour/histogram_map.h"

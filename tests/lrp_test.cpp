@@ -6,6 +6,7 @@
 #include "region_check.h"
 #include "test_support.h"
 
+#include "analysis/colour_statistics.h"
 #include "models/lrp/discrete_spectrum.h"
 #include "models/lrp/lrp_fit.h"
 #include "models/lrp/lrp_structure_fit.h"

@@ -2,6 +2,10 @@
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
 
+#include "analysis/colour_statistics.h"
+#include "analysis/distribution_distances.h"
+#include "analysis/gradient_statistics.h"
+#include "analysis/spectral_distances.h"
 #include "spectra/fft.h"
 #include "test_support.h"
 

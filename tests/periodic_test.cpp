@@ -4,6 +4,7 @@
 #include "region_check.h"
 #include "test_support.h"
 
+#include "analysis/colour_statistics.h"
 #include "numerics/random.h"
 #include "models/wavelet/wavelet_noise.h"
 

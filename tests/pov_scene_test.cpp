@@ -5,6 +5,7 @@
 // with emission only, so each pixel is the texture at its centre, written as linear EXR (+FE: not
 // gamma-encoded, not clamped). The comparisons use the shared metrics (stochtex/metrics.h).
 // Tests that need POV-Ray skip when `povray` is not on PATH; the CLI tests run anyway.
+#include "analysis/colour_statistics.h"
 #include "test_support.h"
 
 #include <stochtex/error.h>

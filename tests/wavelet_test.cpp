@@ -3,6 +3,7 @@
 // (Fig. 6), anti-aliasing by band clamping, determinism.
 #include "test_support.h"
 
+#include "analysis/colour_statistics.h"
 #include "spectra/band_power.h"
 #include "colour/colour_basis.h"
 #include "numerics/random.h"

@@ -1,5 +1,8 @@
 // stochtex — texture statistics and distances: the one place where "how close is this
 // synthesis to that photo" is defined. Used by tests, `stex compare` and the benchmarks.
+// Declared here: what front-ends and the models' fits call. The single measures that only
+// compare_images and the tests call (2D spectral distances, gradient and colour statistics)
+// are internal, declared beside their code in core/src/analysis/.
 #pragma once
 
 #include <stochtex/image.h>
@@ -60,22 +63,6 @@ struct PolarPsd {
 PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave = 4,
                    int angle_bins = 12);
 
-/// The 2D (oriented) log-PSD distance, in dB. Estimator: in each radius bin both spectra have,
-/// the finest grouping of the angle cells into d equal sectors (d a divisor of angle_bins, down
-/// to d = 1: the radial PSD) in which every sector of both spectra holds ≥ min_samples FFT
-/// samples, so periodogram noise (±4.3 dB per sample) stays ≲ 4.3/√(min_samples/2) dB per
-/// sector; then RMS of 10·log10(Pa/Pb) over the sectors, each weighted 1/d so every radius bin
-/// (a fixed share of an octave) weighs the same, as in log_psd_distance_db. Powers are first
-/// raised to a floor 60 dB under the strongest sector of either (an 8-bit photo's quantisation
-/// floor against a float render's nothing is a difference no one sees). Throws if no radius bin
-/// qualifies (images too small, or different grids).
-double polar_log_psd_distance_db(const PolarPsd& a, const PolarPsd& b, int min_samples = resolved_bin_samples);
-/// The orientation part of polar_log_psd_distance_db: the same sectors and weights, each
-/// sector's power divided by its radius bin's mean power (its own radial PSD there) before the
-/// dB difference, so a level error shared by all directions (a missing octave, a gain) drops
-/// out and only the angular profiles are compared. 0 in bins where only d = 1 qualifies.
-double polar_log_psd_angular_db(const PolarPsd& a, const PolarPsd& b, int min_samples = resolved_bin_samples);
-
 /// One channel's periodogram density (radial_psd's estimator) on a centred size×size grid for
 /// display: cell (i, j) holds the mean over the FFT samples with frequency
 /// (fx, fy), i = ⌊(fx + ½)·size⌋, j = ⌊(½ − fy)·size⌋ (fy towards y up, so the picture turns
@@ -85,48 +72,11 @@ struct CentredSpectrum {
     int size = 0;
     std::vector<double> power;  ///< size·size, rows top to bottom
 };
-CentredSpectrum centred_spectrum(const std::vector<float>& plane, int width, int height, int size);
-
-/// Gradients of one plane (central differences on interior pixels, so photos need not tile):
-/// orientation φ = atan2(gy, gx) mod 180° with gy towards y up, magnitude |∇|. Histograms of these
-/// see edge sharpness (blur lowers |∇| relative to σ) and anisotropy (where the edges point).
-struct GradientStatistics {
-    /// |∇|-weighted orientation histogram: orientation_bins bins centred on k·180°/orientation_bins,
-    /// each φ shared linearly between the two nearest centres (no aliasing of 8-bit gradients'
-    /// preferred angles into one bin); sums to 1.
-    std::vector<double> orientation;
-    /// |∇| / σ of every interior pixel, σ the plane's standard deviation: contrast-free sharpness.
-    std::vector<float> magnitude_over_sigma;
-};
-GradientStatistics gradient_statistics(const std::vector<float>& plane, int width, int height,
-                                       int orientation_bins = 36);
-
-/// 1-Wasserstein distance on the circle of circumference 180° between two orientation
-/// histograms of the same bin count, in degrees: the mean angle the gradient energy of one must
-/// turn to become the other (0 … 45° for mass moved by at most 90°). Werman et al.: with the
-/// CDF differences d_k, min over c of Σ|d_k − c|·Δ, c the (weighted) median of d_k.
-double circular_wasserstein1_degrees(const std::vector<double>& a, const std::vector<double>& b);
-
-/// Chroma of linear Rec.709 RGB as CIELAB a*, b* (D65 white): perceptually near-uniform, and a
-/// dark pixel's chroma shrinks with its lightness as a person sees it.
-std::array<double, 2> cielab_chroma(float r, float g, float b);
-
-/// The fraction of test pixels whose chroma lies outside the region holding 99.5 % of the
-/// reference's chroma: on a grid of a*b* bins of side 2.3 (one just-noticeable difference,
-/// ΔE*ab ≈ 2.3) over [−128, 128]², the densest reference bins holding 99.5 % of its pixels,
-/// dilated by one bin (8-neighbours). A photo's own other crop scores ≈ 0; flecks of a hue the
-/// photo never has score their area.
-double false_colour_rate(const Image& reference, const Image& test);
 
 /// 1-Wasserstein distance between the empirical distributions of two samples (any sizes).
 double wasserstein1(const std::vector<float>& a, const std::vector<float>& b);
 /// The same of two samples already sorted ascending (to compare many samples with one reference).
 double wasserstein1_of_sorted(const std::vector<double>& sorted_a, const std::vector<double>& sorted_b);
-
-std::array<double, 3> channel_means(const Image& rgb);
-std::array<std::array<double, 3>, 3> colour_covariance(const Image& rgb);
-/// ‖cov(test) − cov(reference)‖_F / ‖cov(reference)‖_F.
-double covariance_relative_error(const Image& reference, const Image& test);
 
 /// How far a synthesis's structure is from its photo's: Portilla–Simoncelli statistics of a
 /// complex steerable pyramid (4 scales × 4 orientations) of luma, plus the colour channels'
@@ -148,7 +98,9 @@ struct StructureDistance {
     std::array<double, kParts> parts{};
 };
 
-/// Everything `stex compare` prints, per RGB channel where it applies.
+/// Everything `stex compare` prints, per RGB channel where it applies. A comment naming a
+/// function not declared here names an internal one in core/src/analysis/ (spectral_distances.h,
+/// gradient_statistics.h, colour_statistics.h); docs/metrics.md describes each measure.
 struct ComparisonReport {
     std::array<double, 3> mean_reference{}, mean_test{};
     std::array<double, 3> stddev_reference{}, stddev_test{};

@@ -1,0 +1,19 @@
+// stochtex — the distribution distances only compare_images and the tests call: W1 of
+// orientation histograms on the circle, and the sorted samples compare_images makes of each
+// photo once (wasserstein1 and wasserstein1_of_sorted, which the fits use, are in metrics.h).
+#pragma once
+
+#include <vector>
+
+namespace stochtex {
+
+/// A sample as doubles, sorted ascending (what W1 compares).
+std::vector<double> sorted_doubles(const std::vector<float>& sample);
+
+/// 1-Wasserstein distance on the circle of circumference 180° between two orientation
+/// histograms of the same bin count, in degrees: the mean angle the gradient energy of one must
+/// turn to become the other (0 … 45° for mass moved by at most 90°). Werman et al.: with the
+/// CDF differences d_k, min over c of Σ|d_k − c|·Δ, c the (weighted) median of d_k.
+double circular_wasserstein1_degrees(const std::vector<double>& a, const std::vector<double>& b);
+
+}  // namespace stochtex
