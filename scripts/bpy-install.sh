@@ -97,6 +97,7 @@ if [ "$(cat "$ready52" 2>/dev/null)" != "${pins_52[*]}" ] || [ ! -x "$debian13$v
   in_folder python3.13 -m venv "$venv52"
   in_folder "$venv52/bin/pip" install -q --no-index --find-links /stochtex/wheels "${pins_52[@]}"
   unmount_all
+  mkdir -p "$root/5.2"
   echo "${pins_52[*]}" >"$ready52"
   echo "bpy-install: bpy 5.2 installed in $debian13$venv52"
 else
