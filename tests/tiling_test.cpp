@@ -582,19 +582,23 @@ TextureDescription sharpened_tiling(double contrast)
 
 TEST(TilingBlendContrast, SharperWeightsKeepTheSumOfSquaresAndFavourTheDominantTile)
 {
-    const TilingGrid plain(5, 30.0), sharp(5, 30.0, 4.0);
+    // A whole contrast (repeated squaring) and one that is not (std::pow).
+    const TilingGrid plain(5, 30.0), whole(5, 30.0, 4.0), fractional(5, 30.0, 2.5);
     for (int i = 0; i < 5000; ++i) {
         const double x = 1e4 * std::sin(i * 1.7), y = 1e4 * std::cos(i * 2.3);
-        const TileBlend a = plain.blend(x, y), b = sharp.blend(x, y);
-        double sum2 = 0;
-        int dominant = 0;
-        for (int k = 0; k < 3; ++k) {
-            ASSERT_EQ(a[k].offset, b[k].offset);  // the same tiles, weighted differently
-            sum2 += b[k].weight * b[k].weight;
-            if (a[k].weight > a[dominant].weight) dominant = k;
+        const TileBlend a = plain.blend(x, y);
+        for (const TilingGrid* sharp : {&whole, &fractional}) {
+            const TileBlend b = sharp->blend(x, y);
+            double sum2 = 0;
+            int dominant = 0;
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(a[k].offset, b[k].offset);  // the same tiles, weighted differently
+                sum2 += b[k].weight * b[k].weight;
+                if (a[k].weight > a[dominant].weight) dominant = k;
+            }
+            ASSERT_NEAR(sum2, 1, 1e-12);
+            ASSERT_GE(b[dominant].weight, a[dominant].weight - 1e-12);
         }
-        ASSERT_NEAR(sum2, 1, 1e-12);
-        ASSERT_GE(b[dominant].weight, a[dominant].weight - 1e-12);
     }
     EXPECT_THROW(TilingGrid(5, 30.0, 0.5), Error);
 }
