@@ -11,13 +11,7 @@ shift || true
 models=("${@:-auto tiling lrp gabor wavelet}")
 read -r -a models <<<"${models[*]}"
 stex="$build/cli/stex"
-exemplars="$root/../shared/exemplars"
-[ -d "$exemplars" ] || { echo "structure-table.sh: $exemplars is missing (the shared photos)" >&2; exit 1; }
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-
-after() { awk -v l="$1" 'index($0, l) == 1 { sub(/.*: /, ""); print $1 }'; }
-part() { awk -v p="$1" '/^  marginals / { for (i = 1; i < NF; ++i) if ($i == p) print $(i + 1) }'; }
+source "$root/scripts/compare-report.sh"  # $exemplars, $work, after, part
 
 echo "| photo | model | structure distance | marginals | auto-correlation | cross-orientation | cross-scale | phase | 2D log-PSD dB | gradient magnitude W1 |"
 echo "|---|---|---|---|---|---|---|---|---|---|"

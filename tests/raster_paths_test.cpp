@@ -72,7 +72,12 @@ std::vector<Case> cases()
 {
     TilingSourceOptions source;
     source.exemplar_size = 128;
+    // A non-default blend contrast sharpens the packed weights outside the vectorised address
+    // stage: every path must still agree with the point evaluation and the double estimator.
+    TextureDescription sharpened = tiling_colour();
+    sharpened.parameters.get<TilingParameters>().blend_contrast = 4;
     return {{"tiling colour", tiling_colour()},
+            {"tiling colour contrast 4", sharpened},
             {"tiling colour map", colour_mapped_texture(photo(), photo(), "rgb", source)},
             {"tiling phasor", phasor_texture("phasor-square", 1.0 / 16, source)},
             {"ptm", ptm_description(32, 32, false)},

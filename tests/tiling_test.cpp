@@ -22,6 +22,7 @@
 #include <stochtex/stex_file.h>
 #include <stochtex/models/tiling.h>
 #include <stochtex/models/tiling_parameters.h>
+#include <stochtex/models/tiling_shader_data.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -568,6 +569,98 @@ TEST(TilingFilterTaps, TheCommandsStoreTheCount)
                                         "--model", "tiling", "--filter-taps", "5"}, dir);
     EXPECT_EQ(bad.code, 1) << bad;
     EXPECT_TRUE(test::contains(bad.err, "--filter-taps: must be an integer in [1, 4], got '5'")) << bad;
+}
+
+// ---- Blend contrast ----------------------------------------------------------------------------------
+
+TextureDescription sharpened_tiling(double contrast)
+{
+    TextureDescription d = colour_tiling();
+    d.parameters.get<TilingParameters>().blend_contrast = contrast;
+    return d;
+}
+
+TEST(TilingBlendContrast, SharperWeightsKeepTheSumOfSquaresAndFavourTheDominantTile)
+{
+    // A whole contrast (repeated squaring) and one that is not (std::pow).
+    const TilingGrid plain(5, 30.0), whole(5, 30.0, 4.0), fractional(5, 30.0, 2.5);
+    for (int i = 0; i < 5000; ++i) {
+        const double x = 1e4 * std::sin(i * 1.7), y = 1e4 * std::cos(i * 2.3);
+        const TileBlend a = plain.blend(x, y);
+        for (const TilingGrid* sharp : {&whole, &fractional}) {
+            const TileBlend b = sharp->blend(x, y);
+            double sum2 = 0;
+            int dominant = 0;
+            for (int k = 0; k < 3; ++k) {
+                ASSERT_EQ(a[k].offset, b[k].offset);  // the same tiles, weighted differently
+                sum2 += b[k].weight * b[k].weight;
+                if (a[k].weight > a[dominant].weight) dominant = k;
+            }
+            ASSERT_NEAR(sum2, 1, 1e-12);
+            ASSERT_GE(b[dominant].weight, a[dominant].weight - 1e-12);
+        }
+    }
+    EXPECT_THROW(TilingGrid(5, 30.0, 0.5), Error);
+}
+
+TEST(TilingBlendContrast, SharpenedBlendingKeepsTheExemplarVariance)
+{
+    // Σ w² = 1 still: uncorrelated tiles keep the exemplar's variance at any contrast.
+    const int side = 128;
+    const TilingNoise noise(std::make_shared<const MomentPyramid>(noise_pair(side), side, side),
+                            TilingGrid(1, side / (2 * std::sqrt(3.0)), 8.0));
+    const NoiseRaster raster = sample_noise(noise, 1000, -500, 512);
+    const std::vector<NoiseBlock> all = noise_blocks(raster, 512, [](const Moments&) { return Rgb{}; });
+    for (int a = 0; a < 2; ++a) EXPECT_NEAR(all[0].exact.moment(a, a) / noise.global().moment(a, a), 1.0, 0.12) << a;
+}
+
+TEST(TilingBlendContrast, MinificationStillConvergesToTheMean)
+{
+    // The conformance suite's check (HugeFootprintConvergesToTheMean) at a non-default contrast,
+    // the periodic form (the OIIO plugin's) included.
+    for (const bool periodic : {false, true}) {
+        const auto texture = periodic ? make_periodic_texture(sharpened_tiling(4), {3, 2}) : make_texture(sharpened_tiling(4));
+        const Rgb mean = texture->mean();
+        for (double huge : {1e3, 1e5})
+            for (const Vec2& uv : {Vec2{0.1, 0.2}, Vec2{-3.7, 11.3}, Vec2{250.5, -80.25}}) {
+                const Rgb value = texture->eval(uv, Footprint2D::square(huge));
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], mean[c], 2e-3) << huge << (periodic ? " periodic" : "");
+            }
+    }
+}
+
+TEST(TilingBlendContrast, TheFilesContrastIsTheRendersAndDefaultFilesOmitIt)
+{
+    const TextureDescription d = colour_tiling();
+    EXPECT_EQ(d.parameters.get<TilingParameters>().blend_contrast, 1);
+    EXPECT_FALSE(test::contains(format_stex(d), "blend_contrast"));
+    const TextureDescription sharp = sharpened_tiling(4);
+    const std::string text = format_stex(sharp);
+    EXPECT_TRUE(test::contains(text, "\"blend_contrast\": 4")) << text.substr(0, 400);
+    EXPECT_EQ(format_stex(parse_stex(text, "t.stex")), text);
+    RenderSettings settings;
+    settings.width = settings.height = 48;
+    settings.units_per_pixel = 1.0 / d.pixels_per_unit;
+    EXPECT_NE(render(*make_texture(d), settings).pixels, render(*make_texture(sharp), settings).pixels);
+    EXPECT_EQ(edited_error([](Json& j) { j["parameters"]["blend_contrast"] = 0.5; }),
+              "t.stex: parameters.blend_contrast: must be in [1, 16], got 0.5");
+    EXPECT_EQ(edited_error([](Json& j) { j["parameters"]["blend_contrast"] = 17; }),
+              "t.stex: parameters.blend_contrast: must be in [1, 16], got 17");
+    // The OSL transcription blends with contrast 1: it refuses rather than render another texture.
+    EXPECT_TRUE(test::contains(error_of([&] { tiling_shader_data(sharp); }), "parameters.blend_contrast 4"));
+}
+
+TEST(TilingBlendContrast, AnalyzeStoresTheOption)
+{
+    const std::string dir = test::temp_dir("tiling_blend_contrast");
+    const std::string stex = dir + "/t.stex";
+    const auto analyze = test::run_program({STOCHTEX_CLI, "analyze", test::repo_exemplar("concrete_512.png"), "-o", stex,
+                                            "--model", "tiling", "--exemplar-size", "32", "--blend-contrast", "4"}, dir);
+    ASSERT_TRUE(analyze.succeeded()) << analyze;
+    EXPECT_EQ(read_stex(stex).parameters.get<TilingParameters>().blend_contrast, 4);
+    const auto osl = test::run_program({STOCHTEX_CLI, "osl", stex, "-o", dir + "/t.osl"}, dir);
+    EXPECT_EQ(osl.code, 1) << osl;
+    EXPECT_TRUE(test::contains(osl.err, "blend_contrast")) << osl;
 }
 
 TEST(TilingSharedExemplars, GravelKeepsItsHistogram)

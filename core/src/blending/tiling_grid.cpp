@@ -16,12 +16,15 @@ const double sqrt3 = std::sqrt(3.0);
 std::int64_t floor_mod(std::int64_t a, std::int64_t n) { return ((a % n) + n) % n; }
 }  // namespace
 
-TilingGrid::TilingGrid(std::uint32_t seed, double edge) : seed_(seed), edge_{edge, edge}, inverse_edge_{1 / edge, 1 / edge}
+TilingGrid::TilingGrid(std::uint32_t seed, double edge, double contrast)
+    : seed_(seed), edge_{edge, edge}, inverse_edge_{1 / edge, 1 / edge}, contrast_(contrast)
 {
     if (!(edge > 0) || !std::isfinite(edge)) throw Error("tiling grid: the triangle edge must be positive");
+    if (!(contrast >= 1) || !std::isfinite(contrast)) throw Error("tiling grid: the blend contrast must be ≥ 1 and finite");
 }
 
-TilingGrid::TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period) : TilingGrid(seed, edge)
+TilingGrid::TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period, double contrast)
+    : TilingGrid(seed, edge, contrast)
 {
     for (double p : period)
         if (!(p > 0) || !std::isfinite(p)) throw Error("tiling grid: the period must be positive and finite");
@@ -78,11 +81,11 @@ TileBlend TilingGrid::blend_with(double x, double y, const Draw& draw) const
         vertices = {i + 1, j + 1, i + 1, j, i, j + 1};
         b = {fx + fy - 1, 1 - fy, 1 - fx};
     }
-    const double norm = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    sharpen_blend_weights(b, contrast_);
     TileBlend result;
     for (int k = 0; k < 3; ++k) {
         const std::int64_t vi = vertices[2 * k], vj = vertices[2 * k + 1];
-        result[k].weight = b[k] / norm;
+        result[k].weight = b[k];
         result[k].centre = {edge_[0] * (double(vi) + 0.5 * double(vj)), edge_[1] * (0.5 * sqrt3 * double(vj))};
         draw(vi, vj, result[k]);
     }

@@ -6,6 +6,11 @@
 // blend of three uncorrelated tiles keeps the exemplar's variance everywhere (eq. 1). Each
 // vertex draws a random offset into the exemplar from a hash of its lattice index.
 //
+// Blend contrast γ ≥ 1 (Mikkelsen 2022, Burley 2019): w = B^γ / ‖B^γ‖₂. The tile whose vertex is
+// nearest takes more of the blend, so fewer tiles show through each other (ghosts) where three
+// overlap; Σ w_i² = 1 still holds, so the blend still keeps the exemplar's variance wherever the
+// tiles are uncorrelated. γ = 1 (the default) is Heitz–Neyret's and Deliot–Heitz's blend.
+//
 // Units: exemplar pixels. A tile's content is addressed relative to its vertex,
 // exemplar(p − centre + offset) (tiling_noise.h rounds the shift to whole pixels): then a
 // periodic lattice (below) makes the whole texture periodic, whatever the exemplar's size, since
@@ -18,6 +23,7 @@
 
 #include <array>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 
 namespace stochtex {
@@ -56,12 +62,37 @@ private:
     std::array<Slot, 64> slots_;
 };
 
+/// Sharpens three blend weights (or barycentrics) in place: w_i^contrast, renormalised so that
+/// Σ w_i² = 1. contrast 1 only normalises. Every path that blends tiles (the grid's blend(), the
+/// tiling raster's packed weights) goes through this one function. Inline, with whole contrasts
+/// by repeated squaring: the raster calls it per position and tap, where std::pow halved the
+/// render's speed.
+inline void sharpen_blend_weights(std::array<double, 3>& w, double contrast)
+{
+    // γ = 1 skips the power so that the default blend keeps its exact operations (and bits).
+    if (contrast != 1) {
+        const bool whole = contrast <= 64 && contrast == std::floor(contrast);
+        for (double& v : w) {
+            if (!whole) {
+                v = std::pow(v, contrast);
+                continue;
+            }
+            double power = 1, base = v;
+            for (int e = int(contrast); e > 0; e >>= 1, base *= base)
+                if (e & 1) power *= base;
+            v = power;
+        }
+    }
+    const double norm = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    for (double& v : w) v /= norm;
+}
+
 class TilingGrid {
 public:
-    /// edge: the triangles' edge in exemplar pixels.
-    TilingGrid(std::uint32_t seed, double edge);
+    /// edge: the triangles' edge in exemplar pixels; contrast: the blend contrast γ ≥ 1 (above).
+    TilingGrid(std::uint32_t seed, double edge, double contrast = 1);
     /// Periodic with `period` exemplar pixels per axis (positive, finite).
-    TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period);
+    TilingGrid(std::uint32_t seed, double edge, const std::array<double, 2>& period, double contrast = 1);
 
     TileBlend blend(double x, double y) const;
     /// The same blend, the vertices' offsets looked up in (and added to) `cache`.
@@ -76,6 +107,8 @@ public:
     const std::array<double, 2>& inverse_edges() const { return inverse_edge_; }
     /// The seed of the vertices' offsets (for re-implementations: tiling_shader_data.h).
     std::uint32_t seed() const { return seed_; }
+    /// The blend contrast γ (1: the variance-preserving blend of the papers, unsharpened).
+    double contrast() const { return contrast_; }
 
 private:
     /// The offset and the period shift of vertex (i, j).
@@ -86,6 +119,7 @@ private:
     std::uint32_t seed_;
     std::array<double, 2> edge_;
     std::array<double, 2> inverse_edge_;  // 1 / edge_
+    double contrast_ = 1;
     std::int64_t cells_x_ = 0, repeats_y_ = 0;  // periodic lattice (n, m); 0: not periodic
 };
 

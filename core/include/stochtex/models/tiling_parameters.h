@@ -28,6 +28,12 @@ struct TilingParameters {
     /// estimate, which renders ≈ 2.4× faster (docs/models/tiling.md, "Speed or accuracy").
     int filter_taps = default_filter_taps;
     static constexpr int default_filter_taps = 2, max_filter_taps = 4;
+    /// Blend contrast γ: the tiles' weights are B^γ / ‖B^γ‖₂ (B barycentric), so Σ w² = 1 still
+    /// holds; γ > 1 lets the nearest tile dominate and fewer tiles show through each other
+    /// (Mikkelsen 2022's weight contrast). 1, the default, is Heitz–Neyret's blend
+    /// (docs/models/tiling.md, "Blend contrast").
+    double blend_contrast = 1;
+    static constexpr double max_blend_contrast = 16;
     /// Periodic, sides powers of two. colour: 3 channels y (histogram-Gaussianised or centred);
     /// colour_map: 2 noises in [0, 1]; normal_map: 2 slopes.
     QuantisedImage exemplar;

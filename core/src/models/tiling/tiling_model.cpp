@@ -41,7 +41,10 @@ public:
              integer_option("filter-taps", 1, TilingParameters::max_filter_taps,
                             {std::to_string(TilingParameters::default_filter_taps), "taps per axis",
                              "the footprint estimator's taps per footprint axis, stored as filter_taps: 1 (the paper's "
-                             "single per-texel estimate) renders ≈ 2.4× faster, 2 halves the filtered mean's error"})});
+                             "single per-texel estimate) renders ≈ 2.4× faster, 2 halves the filtered mean's error"}),
+             number_option("blend-contrast", 1, TilingParameters::max_blend_contrast,
+                           {"1", "", "blend contrast γ, stored as blend_contrast: the tiles' weights B^γ (Σ w² = 1); "
+                                     "above 1 the nearest tile dominates (fewer ghosts, sharper tile borders)"})});
     }
 
     void validate(const TextureDescription& description, const std::string& source) const override
@@ -68,6 +71,12 @@ public:
         if (taps != TilingParameters::default_filter_taps) {
             parameters.filter_taps = taps;
             provenance.options.push_back({"filter_taps", std::to_string(taps)});
+        }
+        // Set after the exemplar's size was chosen (its scoring renders blend with γ = 1).
+        const std::string& contrast = input.model_options.at("blend-contrast");
+        if (std::stod(contrast) != 1) {
+            parameters.blend_contrast = std::stod(contrast);
+            provenance.options.push_back({"blend_contrast", contrast});
         }
         return parameters;
     }

@@ -172,6 +172,18 @@ ParameterSchema<TilingParameters> tiling_schema()
                 json_fields::fail(source, path, "must be in [1, " + std::to_string(P::max_filter_taps) + "], got " +
                                                     std::to_string(p.filter_taps));
         });
+    ParameterInfo blend_contrast{"blend_contrast", "number", NumberRange{1, P::max_blend_contrast, ""}.text(), "1", "",
+                                 "Blend contrast γ: the three tiles' weights are B^γ normalised to Σ w² = 1 (B the barycentric "
+                                 "coordinates); above 1 the nearest tile dominates, so fewer tiles show through each other "
+                                 "(ghosts), at the price of sharper tile borders. 1 is Heitz–Neyret's blend. Written only when not 1.",
+                                 {}};
+    schema.optional_custom(
+        blend_contrast, [](const P& p) { return p.blend_contrast != 1; },
+        [](const Field& f, P& p, const ReadContext&) { p.blend_contrast = f.number(); },
+        [](const P& p) { return Json(p.blend_contrast); },
+        [](const P& p, const std::string& path, const std::string& source) {
+            check_in_range(p.blend_contrast, {1, P::max_blend_contrast, ""}, path, source);
+        });
     ParameterInfo exemplar{"exemplar", "image", "", "", "",
                            "3 channels for colour, 2 otherwise; periodic (tiles are cut anywhere, with wrap); sides "
                            "powers of two in [16, 1024]. For colour, a channel with a histogram map holds standard-normal "

@@ -3,6 +3,7 @@
 #include "numerics/exact_rounding.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace stochtex {
@@ -114,6 +115,31 @@ void TilingRaster::fill(Workspace::Slot& slot, std::int64_t i, std::int64_t j) c
     slot = {i, j, t[0], t[1]};
 }
 
+namespace {
+
+/// The blend contrast on a planned tap row: its three tiles' weights (w and w²) sharpened as
+/// TilingGrid::blend sharpens them (sharpen_blend_weights). Outside the vectorised address stage,
+/// which the default contrast keeps bit for bit; w is already B / ‖B‖, and the normalisation
+/// makes B^γ and w^γ the same weights.
+void sharpen_weights(const tiling_raster::TileReads& reads, std::size_t count, double contrast)
+{
+    using tiling_raster::chunk;
+    float* fields[3];
+    for (std::size_t k = 0; k < 3; ++k) fields[k] = reads.fractions + k * tiling_raster::fraction_fields * chunk;
+    for (std::size_t i = 0; i < count; ++i) {
+        std::array<double, 3> w;
+        for (std::size_t k = 0; k < 3; ++k) w[k] = fields[k][tiling_raster::weight * chunk + i];
+        sharpen_blend_weights(w, contrast);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const float v = float(w[k]);
+            fields[k][tiling_raster::weight * chunk + i] = v;
+            fields[k][tiling_raster::weight_squared * chunk + i] = v * v;
+        }
+    }
+}
+
+}  // namespace
+
 template <int Channels>
 void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, const Plan& plan, Workspace& ws, float* out) const
 {
@@ -176,6 +202,7 @@ void TilingRaster::estimate_chunk(const double* x, std::size_t count, double y, 
             const tiling_raster::TileReads reads{ws.offsets_.data() + std::size_t(k) * 3 * tiling_raster::offset_fields * chunk,
                                                  ws.fractions_.data() + std::size_t(k) * 3 * tiling_raster::fraction_fields * chunk};
             tiling_raster::plan_tap_row(row, reads);
+            if (grid.contrast() != 1) sharpen_weights(reads, lanes, grid.contrast());
         }
     // The lookups and the mixture, position by position.
     tiling_raster::TapSums sums{};

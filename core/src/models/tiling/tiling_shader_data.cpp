@@ -4,6 +4,7 @@
 #include <stochtex/stex_file.h>
 
 #include "models/tiling/tiling_texture.h"
+#include "schema/parameter_schema.h"
 
 #include <algorithm>
 
@@ -18,6 +19,12 @@ TilingShaderData tiling_shader_data(const TextureDescription& description)
     if (parameters.output == TilingOutput::colour_map)
         throw Error("tiling texture with output colour_map: no OSL transcription (its filtered colour-map table); "
                     "use osl/stochtex_texture.osl with the OIIO plugin, or a baked map");
+    // The transcription blends with B / ‖B‖ (osl/stochtex_tiling.h): refuse rather than render
+    // another texture.
+    if (parameters.blend_contrast != 1)
+        throw Error("tiling texture with parameters.blend_contrast " + number_text(parameters.blend_contrast) +
+                    ": no OSL transcription (the shader blends with contrast 1); use osl/stochtex_texture.osl with the "
+                    "OIIO plugin, or a baked map");
     // The numbers are read from the texture the core evaluates, never recomputed.
     const TilingTexture texture(description);
     const TilingNoise& noise = texture.noise();

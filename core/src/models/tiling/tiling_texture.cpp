@@ -70,10 +70,12 @@ TilingTexture::TilingTexture(const TextureDescription& description, const Vec2* 
         // Plane 0 keeps the description's seed; the solid blend's other planes get their own.
         const std::uint32_t seed = plane == 0 ? description.seed : std::uint32_t(mix_seed(description.seed, plane, 0x7431));
         if (plane == 0 && period)
-            planes_.emplace_back(pyramid, TilingGrid(seed, edge, {(*period)[0] * description.pixels_per_unit,
-                                                                  (*period)[1] * description.pixels_per_unit}));
+            planes_.emplace_back(pyramid, TilingGrid(seed, edge,
+                                                     {(*period)[0] * description.pixels_per_unit,
+                                                      (*period)[1] * description.pixels_per_unit},
+                                                     parameters.blend_contrast));
         else
-            planes_.emplace_back(pyramid, TilingGrid(seed, edge));
+            planes_.emplace_back(pyramid, TilingGrid(seed, edge, parameters.blend_contrast));
     }
     packed_ = std::make_shared<const PackedMomentPyramid>(*pyramid);
     for (const TilingNoise& plane : planes_) rasters_.emplace_back(plane, *packed_);
@@ -336,6 +338,11 @@ std::string describe_tiling(const TextureDescription& d)
                   "grid         triangle edge %.4g exemplar widths = %.1f px; hexagonal tiles %.1f px across; %d pyramid levels\n",
                   t.triangle_edge, edge_px, 2 * edge_px, pyramid->level_count());
     add(line);
+    if (t.blend_contrast != 1) {
+        std::snprintf(line, sizeof line, "blend        contrast %.4g (weights B^%.4g, normalised to sum of squares 1)\n",
+                      t.blend_contrast, t.blend_contrast);
+        add(line);
+    }
     for (int c = 0; c < e.channels; ++c) {
         std::snprintf(line, sizeof line, "channel %d    mean %+.5f, sigma %.5f (exact, exemplar), stored range [%.4g, %.4g]\n", c,
                       global.mean[c], std::sqrt(global.moment(c, c)), e.ranges[c][0], e.ranges[c][1]);
