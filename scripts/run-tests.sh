@@ -26,7 +26,7 @@ ctest --test-dir build --output-on-failure -j"$(nproc)"
 if [ "${STOCHTEX_SANITIZER_LANE:-ON}" != OFF ]; then bash scripts/sanitizer-lane.sh build-asan; fi
 # Debian 13 lane (issue 15): the plugin against OIIO 2.5 and the Blender scene tests with Blender
 # 4.3 installing the add-on as an extension, in a debootstrap folder (scripts/debian13-lane.sh;
-# ≈ 8–9 min from nothing on 2 idle cores, ≈ 2 min when the folder is reused; README). STOCHTEX_SKIP_DEBIAN13=1 skips it.
+# its folder made above; ≈ 5 min: docs/testing.md). STOCHTEX_SKIP_DEBIAN13=1 skips it.
 prepared "$prepare_debian13_bpy" debian13-bpy
 bash scripts/debian13-lane.sh
 # Debian sid lane (issue 31): g++ 16, OIIO 3.1, Blender 5.2 (scripts/sid-lane.sh). STOCHTEX_SKIP_SID=1 skips it.
