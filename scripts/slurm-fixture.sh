@@ -66,6 +66,15 @@ munged --force --key-file="$dir/munge.key" --socket="$dir/munge.socket" --pid-fi
   --log-file="$dir/munged.log" --seed-file="$dir/munged.seed" || fail "munged did not start"
 
 mkdir -p "$dir/state" "$dir/spool"
+# Two free ports unless given: two test runs on one machine (a developer's suite beside a lane's)
+# met on Slurm's defaults 6817/6818, and the second cluster failed with "Address already in use".
+if [ -z "${STOCHTEX_SLURMCTLD_PORT:-}" ] || [ -z "${STOCHTEX_SLURMD_PORT:-}" ]; then
+  read -r STOCHTEX_SLURMCTLD_PORT STOCHTEX_SLURMD_PORT < <(python3 -c 'import socket
+sockets = [socket.socket() for _ in range(2)]
+for s in sockets:
+    s.bind(("", 0))
+print(*[s.getsockname()[1] for s in sockets])')
+fi
 cat > "$dir/slurm.conf" <<CONF
 ClusterName=stochtex-test
 SlurmctldHost=$node
@@ -79,8 +88,8 @@ SlurmctldPidFile=$dir/slurmctld.pid
 SlurmdPidFile=$dir/slurmd.pid
 SlurmctldLogFile=$dir/slurmctld.log
 SlurmdLogFile=$dir/slurmd.log
-SlurmctldPort=${STOCHTEX_SLURMCTLD_PORT:-6817}
-SlurmdPort=${STOCHTEX_SLURMD_PORT:-6818}
+SlurmctldPort=$STOCHTEX_SLURMCTLD_PORT
+SlurmdPort=$STOCHTEX_SLURMD_PORT
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 SwitchType=switch/none
