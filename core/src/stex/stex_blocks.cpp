@@ -248,7 +248,7 @@ ParameterSchema<ModelScore> make_model_score_block()
                    json_fields::fail(source, path, e.what());
                }
            });
-    s.optional_custom({"joint_colour", "boolean", "true", "", "", "true when the candidate was fitted with joint colour; absent otherwise.", {}, false},
+    s.optional_custom({"joint_colour", "boolean", "true | false", "false", "", "true when the candidate was fitted with joint colour; absent otherwise.", {}, false},
                       [](const ModelScore& score) { return score.joint_colour; },
                       [](const Field& f, ModelScore& score, const ReadContext&) { score.joint_colour = f.boolean(); },
                       [](const ModelScore&) { return Json(true); });
@@ -267,7 +267,7 @@ ParameterSchema<ModelScore> make_model_score_block()
     metric(s, "gradient_orientation_degrees", &ModelScore::gradient_orientation_degrees, "Gradient orientation W1, degrees.");
     metric(s, "gradient_magnitude_w1", &ModelScore::gradient_magnitude_w1, "Gradient magnitude W1.");
     s.integer("bytes", &ModelScore::bytes, 0, std::numeric_limits<long long>::max(),
-              {"", "bytes", "The size of that candidate's .stex."},
+              {"", "bytes", "The size of that candidate's .stex.", "≥ 0"},
               [](const ModelScore& score, const std::string& path, const std::string& source) {
                   if (score.bytes < 0) json_fields::fail(source, path, "must not be negative");
               });
