@@ -246,6 +246,17 @@ public:
             });
     }
 
+    /// Makes the field declared last optional: written only where `present` says the struct has
+    /// it, read and checked only where the key is there (e.g. a list written only when not empty).
+    ParameterSchema& optional_when(std::function<bool(const Struct&)> present)
+    {
+        Entry& last = entries_.back();
+        last.info.optional = true;
+        last.optional = true;
+        last.present = std::move(present);
+        return *this;
+    }
+
     /// A check relating several fields, run after the fields' own checks.
     ParameterSchema& check(Check whole)
     {

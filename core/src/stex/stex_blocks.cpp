@@ -313,7 +313,8 @@ ParameterSchema<Provenance> make_provenance_block()
            {"", "",
             "Present when the analysis chose the model (--model auto; options.model is then \"auto\"): one entry per "
             "candidate, in the order they were tried, with its fidelity penalty and the metrics of its render against the "
-            "photo."});
+            "photo."})
+        .optional_when([](const Provenance& p) { return !p.model_choice.empty(); });
     return s;
 }
 
