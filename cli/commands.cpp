@@ -192,6 +192,10 @@ int ModelsCommand::run() const
         std::printf("%-8s %s\n         can: %s; %s\n", model->name.c_str(), model->summary.c_str(),
                     can.empty() ? "render" : can.c_str(), model->doc.c_str());
     }
+    // The blocks every model's file shares, as declared (docs/stex-format.md holds these tables too).
+    if (markdown)
+        for (const StexBlockInfo& block : shared_stex_blocks())
+            std::printf("### block %s\n\n%s", block.path.c_str(), parameter_table_markdown(block.fields, block.path).c_str());
     return 0;
 }
 

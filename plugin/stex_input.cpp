@@ -47,10 +47,29 @@ static_assert(OIIO_PLUGIN_VERSION >= 22, "stex.imageio needs OIIO 2.0 or later")
 
 namespace {
 
-/// The open-time hints this plugin understands. Any other "stex:" hint is an error (a typo
-/// must not silently give the default).
-constexpr const char* known_hints[] = {"stex:width", "stex:height", "stex:tile_width", "stex:tile_height",
-                                       "stex:scale", "stex:channels", "stex:seed", "stex:light", "stex:tile_cache_mb"};
+/// The open-time hints this plugin understands: "stex:" + each field of the .stex image block (as
+/// the core declares it, so a field added there is a hint here), then the texture's seed and
+/// light and this plugin's tile cache budget. Any other "stex:" hint is an error (a typo must not
+/// silently give the default).
+const std::vector<std::string>& known_hints()
+{
+    static const std::vector<std::string> hints = [] {
+        std::vector<std::string> names;
+        for (const stochtex::ParameterInfo& field : stochtex::image_layout_fields()) names.push_back("stex:" + field.key);
+        for (const char* own : {"stex:seed", "stex:light", "stex:tile_cache_mb"}) names.emplace_back(own);
+        return names;
+    }();
+    return hints;
+}
+
+/// "RGB | RGBA | Y" (a declared range of words) as "RGB, RGBA or Y".
+std::string alternatives(const std::string& range)
+{
+    const std::vector<std::string> words = Strutil::splits(range, " | ");
+    std::string text;
+    for (std::size_t i = 0; i < words.size(); ++i) text += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+    return text;
+}
 
 /// The tile cache's budget per open file when neither the hint nor the environment sets one:
 /// about 1 300 tiles of 64² RGB floats, more than a Cycles render keeps in flight per file.
@@ -67,30 +86,73 @@ bool parse_exact(const std::string& text, Number& value)
     return error == std::errc() && stop == end && !text.empty();
 }
 
-/// An integer hint: an int attribute, or a string holding exactly an integer.
-bool integer_hint(const ImageSpec& config, const char* name, long long min, long long max, long long& value,
-                  std::string& problem)
+/// The value of an integer hint: an int attribute, or a string holding exactly an integer.
+bool integer_value(const ParamValue* p, const std::string& name, long long min, long long max, long long& value,
+                   std::string& problem)
 {
-    const ParamValue* p = config.find_attribute(name);
-    if (!p) return true;
     long long parsed = 0;
     if (p->type() == TypeInt || p->type() == TypeUInt) {
         parsed = p->type() == TypeInt ? p->get_int() : (long long)(*(const unsigned int*)p->data());
     } else if (p->type() == TypeString) {
         if (!parse_exact(p->get_string(), parsed)) {
-            problem = std::string(name) + ": expected an integer, got \"" + p->get_string() + "\"";
+            problem = name + ": expected an integer, got \"" + p->get_string() + "\"";
             return false;
         }
     } else {
-        problem = std::string(name) + ": expected an integer, got a value of type " + p->type().c_str();
+        problem = name + ": expected an integer, got a value of type " + p->type().c_str();
         return false;
     }
     if (parsed < min || parsed > max) {
-        problem = std::string(name) + ": must be in [" + std::to_string(min) + ", " + std::to_string(max) +
+        problem = name + ": must be in [" + std::to_string(min) + ", " + std::to_string(max) +
                   "], got " + std::to_string(parsed);
         return false;
     }
     value = parsed;
+    return true;
+}
+
+/// The integer hint `name`, if given (`value` is left alone if not).
+bool integer_hint(const ImageSpec& config, const char* name, long long min, long long max, long long& value,
+                  std::string& problem)
+{
+    const ParamValue* p = config.find_attribute(name);
+    return !p || integer_value(p, name, min, max, value, problem);
+}
+
+/// The value of the hint `p` for the image-block field `field`, by the field's declared type.
+/// Range checks beyond int limits are validate_image_layout's (one set of rules).
+bool layout_hint_value(const ParamValue& p, const std::string& hint, const stochtex::ParameterInfo& field,
+                       stochtex::ImageLayoutValue& value, std::string& problem)
+{
+    if (field.type == "integer") {
+        long long parsed = 0;
+        if (!integer_value(&p, hint, 0, std::numeric_limits<int>::max(), parsed, problem)) return false;
+        value = parsed;
+    } else if (field.type == "number") {
+        // OIIO 2.4's get_float() gives 0 for an int (what oiiotool --iconfig makes of "-1"):
+        // each type is read as itself, so that a message quotes the value given.
+        if (p.type() == TypeFloat) {
+            value = double(p.get_float());
+        } else if (p.type() == TypeInt) {
+            value = double(p.get_int());
+        } else if (p.type() == TypeString) {
+            double number = 0;
+            if (!parse_exact(p.get_string(), number)) {
+                problem = hint + ": expected a number, got \"" + p.get_string() + "\"";
+                return false;
+            }
+            value = number;
+        } else {
+            problem = hint + ": expected a number, got a value of type " + p.type().c_str();
+            return false;
+        }
+    } else {
+        if (p.type() != TypeString) {
+            problem = hint + ": expected a string (" + alternatives(field.range) + ")";
+            return false;
+        }
+        value = p.get_string();
+    }
     return true;
 }
 
@@ -151,60 +213,30 @@ bool StexInput::apply_hints(const ImageSpec& config, stochtex::TextureDescriptio
     for (const ParamValue& p : config.extra_attribs) {
         const std::string name = p.name().string();
         if (!Strutil::istarts_with(name, "stex:")) continue;
-        if (std::find(std::begin(known_hints), std::end(known_hints), name) == std::end(known_hints)) {
-            problem = "unknown open hint \"" + name + "\" (known: stex:width, stex:height, stex:tile_width, "
-                      "stex:tile_height, stex:scale, stex:channels, stex:seed, stex:light, stex:tile_cache_mb)";
+        if (std::find(known_hints().begin(), known_hints().end(), name) == known_hints().end()) {
+            problem = "unknown open hint \"" + name + "\" (known: " + Strutil::join(known_hints(), ", ") + ")";
             return false;
         }
     }
-    // Range checks beyond int limits are left to validate_image_layout (one set of rules).
-    constexpr long long int_max = std::numeric_limits<int>::max();
-    long long value = 0;
-    struct IntHint { const char* name; int* field; };
-    const IntHint int_hints[] = {{"stex:width", &layout.width}, {"stex:height", &layout.height},
-                                 {"stex:tile_width", &layout.tile_width}, {"stex:tile_height", &layout.tile_height}};
-    for (const IntHint& hint : int_hints) {
-        value = *hint.field;
-        if (!integer_hint(config, hint.name, 0, int_max, value, problem)) return false;
-        *hint.field = int(value);
-    }
-    value = description.seed;
-    if (!integer_hint(config, "stex:seed", 0, 0xffffffffll, value, problem)) return false;
-    description.seed = std::uint32_t(value);
-    if (const ParamValue* p = config.find_attribute("stex:scale")) {
-        // OIIO 2.4's get_float() gives 0 for an int (what oiiotool --iconfig makes of "-1"):
-        // each type is read as itself, so that a message quotes the value given.
-        if (p->type() == TypeFloat) {
-            layout.scale = p->get_float();
-        } else if (p->type() == TypeInt) {
-            layout.scale = p->get_int();
-        } else if (p->type() == TypeString) {
-            double scale = 0;
-            if (!parse_exact(p->get_string(), scale)) {
-                problem = "stex:scale: expected a number, got \"" + p->get_string() + "\"";
-                return false;
-            }
-            layout.scale = scale;
-        } else {
-            problem = std::string("stex:scale: expected a number, got a value of type ") + p->type().c_str();
-            return false;
-        }
-    }
-    if (const ParamValue* p = config.find_attribute("stex:channels")) {
-        if (p->type() != TypeString) {
-            problem = "stex:channels: expected a string (RGB, RGBA or Y)";
-            return false;
-        }
-        layout.channels = p->get_string();
+    for (const stochtex::ParameterInfo& field : stochtex::image_layout_fields()) {
+        const std::string hint = "stex:" + field.key;
+        const ParamValue* p = config.find_attribute(hint);
+        if (!p) continue;
+        stochtex::ImageLayoutValue value;
+        if (!layout_hint_value(*p, hint, field, value, problem)) return false;
+        stochtex::set_image_layout_field(layout, field.key, value, hint);
         // Checked here rather than with the rest of the layout so that the message names the
-        // hint: an empty string is an error, not "the default" (oiiotool's --iconfig with an
-        // empty value removes the hint instead, so it never gets here).
-        const std::string channels_problem = stochtex::image_channels_problem(layout.channels);
-        if (!channels_problem.empty()) {
-            problem = "stex:channels (image.channels): " + channels_problem;
+        // hint: an empty channels string is an error, not "the default" (oiiotool's --iconfig
+        // with an empty value removes the hint instead, so it never gets here).
+        const std::string field_problem = stochtex::image_layout_field_problem(layout, field.key);
+        if (!field_problem.empty()) {
+            problem = hint + " (image." + field.key + "): " + field_problem;
             return false;
         }
     }
+    long long seed = description.seed;
+    if (!integer_hint(config, "stex:seed", 0, 0xffffffffll, seed, problem)) return false;
+    description.seed = std::uint32_t(seed);
     // The light direction of models that have one (ptm), "x,y,z" or 3 floats: the core sets it
     // and rejects models without one.
     if (const ParamValue* p = config.find_attribute("stex:light")) {

@@ -5,6 +5,7 @@
 #include <stochtex/analysis.h>
 #include <stochtex/error.h>
 #include <stochtex/model.h>
+#include <stochtex/stex_file.h>
 
 #include "models/model.h"
 #include "test_support.h"
@@ -38,6 +39,28 @@ TEST(ModelRegistry, DocsParameterTablesAreTheDeclarations)
         EXPECT_EQ(document.substr(table, stop - table), parameter_table_markdown(*model))
             << path << ": the table of model " << model->name
             << " differs from its declaration; run scripts/update-parameter-tables.py build-dev/cli/stex";
+    }
+}
+
+// The blocks every file shares are declared once too (core/src/stex/stex_blocks.cpp): the
+// document's tables of scale, colour, histograms, provenance and image are those declarations.
+TEST(ModelRegistry, DocsSharedBlockTablesAreTheDeclarations)
+{
+    const std::string path = std::string(STOCHTEX_SOURCE_DIR) + "/docs/stex-format.md";
+    const std::string document = read_text(path);
+    ASSERT_FALSE(document.empty()) << path;
+    const std::vector<StexBlockInfo> blocks = shared_stex_blocks();
+    ASSERT_EQ(blocks.size(), 5u);
+    for (const StexBlockInfo& block : blocks) {
+        EXPECT_FALSE(block.fields.empty()) << block.path;
+        for (const ParameterInfo& field : block.fields) EXPECT_FALSE(field.doc.empty()) << block.path << "." << field.key;
+        const std::string begin = "<!-- block " + block.path + ": ", end = "<!-- end block " + block.path + " -->";
+        const std::size_t start = document.find(begin), stop = document.find(end);
+        ASSERT_NE(start, std::string::npos) << path << " has no table for the block " << block.path;
+        ASSERT_NE(stop, std::string::npos) << path << " has no end marker for the block " << block.path;
+        const std::size_t table = document.find('\n', start) + 1;
+        EXPECT_EQ(document.substr(table, stop - table), parameter_table_markdown(block.fields, block.path))
+            << path << ": the table of " << block.path << " differs from its declaration; run scripts/update-parameter-tables.py";
     }
 }
 

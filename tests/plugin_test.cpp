@@ -205,6 +205,26 @@ TEST(PluginImageInput, OpenHintsOverrideTheFileAndAreChecked)
         EXPECT_NE(hint_error(name, 0).find(path), std::string::npos) << name << ": the message names the file";
 }
 
+// The hints are the .stex image block's fields as the core declares them (one list): each field
+// is a hint, named in the unknown-hint message, and its declared default is accepted as a hint.
+TEST(PluginImageInput, EveryImageBlockFieldIsAnOpenHint)
+{
+    const std::string dir = test::temp_dir("plugin-hint-fields");
+    const std::string path = write_texture(dir, "t.stex", layout(64, 64));
+    ImageSpec unknown;
+    unknown.attribute("stex:nonsense", 1);
+    const std::string message = open_error(path, unknown);
+    ASSERT_FALSE(image_layout_fields().empty());
+    for (const ParameterInfo& field : image_layout_fields()) {
+        EXPECT_NE(message.find("stex:" + field.key), std::string::npos) << message;
+        ImageSpec config;
+        if (field.type == "integer") config.attribute("stex:" + field.key, std::stoi(field.default_value));
+        else if (field.type == "number") config.attribute("stex:" + field.key, std::stof(field.default_value));
+        else config.attribute("stex:" + field.key, field.default_value);
+        EXPECT_EQ(open_error(path, config), "") << field.key << " = " << field.default_value;
+    }
+}
+
 // Issue 16: stex:width/height 1048576 made `oiiotool -o` grow without bound, and 4096² tiles on
 // a 64² image cost 1.5 GB (every MIP level a whole tile). Both are rejected at open, naming the
 // field and the limit; the default layout, and the default tile on any image, stay valid.

@@ -135,6 +135,28 @@ TEST(StexFile, RoundTripIsByteIdentical)
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
+// Optional blocks and lists are written only where the description has them: a file of a named
+// model (no model choice) and without an image layout has neither key, and reads back so.
+TEST(StexFile, AbsentOptionalFieldsAreNotWritten)
+{
+    TextureDescription plain = sample();
+    plain.provenance.model_choice.clear();
+    plain.image.reset();
+    const std::string text = stochtex::format_stex(plain);
+    EXPECT_FALSE(contains(text, "model_choice")) << text;
+    EXPECT_FALSE(contains(text, "\"image\"")) << text;
+    EXPECT_TRUE(stochtex::parse_stex(text, "plain").provenance.model_choice.empty());
+
+    TextureDescription chosen = plain;
+    stochtex::ModelScore score;
+    score.model = plain.model;
+    score.penalty = 0.5;
+    chosen.provenance.model_choice.push_back(score);
+    const std::string chosen_text = stochtex::format_stex(chosen);
+    EXPECT_TRUE(contains(chosen_text, "\"model_choice\"")) << chosen_text;
+    EXPECT_EQ(stochtex::format_stex(stochtex::parse_stex(chosen_text, "chosen")), chosen_text);
+}
+
 TEST(StexFile, RoundTripKeepsValuesToFloatPrecision)
 {
     const TextureDescription original = sample();

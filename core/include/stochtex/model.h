@@ -65,5 +65,7 @@ std::string models_json();
 /// The Markdown table of one model's parameters (docs/stex-format.md holds one per model, and a
 /// test checks it against this).
 std::string parameter_table_markdown(const ModelInfo& model);
+/// The same table for any declared fields, keys as JSON paths below `parent` ("image" → `image.width`).
+std::string parameter_table_markdown(const std::vector<ParameterInfo>& fields, const std::string& parent);
 
 }  // namespace stochtex

@@ -217,10 +217,12 @@ std::string models_json()
     return root.dump(2) + "\n";
 }
 
-std::string parameter_table_markdown(const ModelInfo& model)
+std::string parameter_table_markdown(const ModelInfo& model) { return parameter_table_markdown(model.parameters, "parameters"); }
+
+std::string parameter_table_markdown(const std::vector<ParameterInfo>& fields, const std::string& parent)
 {
     std::string out = "| key | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n";
-    for (const ParameterInfo& p : model.parameters) table_rows(p, "parameters", out);
+    for (const ParameterInfo& p : fields) table_rows(p, parent, out);
     return out;
 }
 

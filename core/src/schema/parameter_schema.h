@@ -146,6 +146,14 @@ public:
                       [member](const Struct& s) { return Json(s.*member); });
     }
 
+    /// A string (`extra` checks its value).
+    ParameterSchema& text(const char* key, std::string Struct::*member, FieldDoc doc, Check extra = {})
+    {
+        return custom(make_info(key, "string", "", doc),
+                      [member](const Field& f, Struct& s, const ReadContext&) { s.*member = f.string(); },
+                      [member](const Struct& s) { return Json(s.*member); }, std::move(extra));
+    }
+
     /// An enumeration stored as its name; `from_string` throws Error for unknown names.
     template <class Enum>
     ParameterSchema& enumeration(const char* key, Enum Struct::*member, const char* (*to_string)(Enum),
@@ -238,6 +246,17 @@ public:
             });
     }
 
+    /// Makes the field declared last optional: written only where `present` says the struct has
+    /// it, read and checked only where the key is there (e.g. a list written only when not empty).
+    ParameterSchema& optional_when(std::function<bool(const Struct&)> present)
+    {
+        Entry& last = entries_.back();
+        last.info.optional = true;
+        last.optional = true;
+        last.present = std::move(present);
+        return *this;
+    }
+
     /// A check relating several fields, run after the fields' own checks.
     ParameterSchema& check(Check whole)
     {
@@ -250,13 +269,20 @@ public:
     /// Reads an object holding exactly the declared keys (optional ones may be absent).
     Struct read(const Field& block, const ReadContext& context = {}) const
     {
+        Struct result{};
+        read_into(block, result, context);
+        return result;
+    }
+
+    /// Like read(), into an existing struct: the keys present are set, the others keep their
+    /// values (a block that declares some of a larger struct's members, or defaults overridden).
+    void read_into(const Field& block, Struct& result, const ReadContext& context = {}) const
+    {
         std::vector<const char*> required, optional;
         for (const Entry& entry : entries_) (entry.optional ? optional : required).push_back(entry.info.key.c_str());
         block.expect_keys(required, optional);
-        Struct result{};
         for (const Entry& entry : entries_)
             if (!entry.optional || block.contains(entry.info.key.c_str())) entry.read(block[entry.info.key.c_str()], result, context);
-        return result;
     }
 
     /// The object to store: keys in declaration order.
