@@ -259,7 +259,7 @@ void read_provenance(const Field& provenance, Provenance& result)
     for (const Field& entry : provenance["model_choice"].elements(-1, "candidates")) {
         entry.expect_keys({"model", "colour", "penalty", "radial_log_psd_db", "polar_log_psd_db", "w1_sigma", "false_colour_rate",
                            "gradient_orientation_degrees", "gradient_magnitude_w1", "bytes"},
-                          {"joint_colour"});
+                          {"joint_colour", "variant", "structure_distance"});
         // A metric the images were too small for is written as null.
         const auto metric = [&](const char* key) {
             const Field field = entry[key];
@@ -269,6 +269,7 @@ void read_provenance(const Field& provenance, Provenance& result)
         score.model = entry["model"].string();
         score.colour = entry["colour"].string();
         score.joint_colour = entry.contains("joint_colour") && entry["joint_colour"].boolean();
+        if (entry.contains("variant")) score.variant = entry["variant"].string();
         score.penalty = entry["penalty"].number();
         score.radial_log_psd_db = metric("radial_log_psd_db");
         score.polar_log_psd_db = metric("polar_log_psd_db");
@@ -276,6 +277,7 @@ void read_provenance(const Field& provenance, Provenance& result)
         score.false_colour_rate = metric("false_colour_rate");
         score.gradient_orientation_degrees = metric("gradient_orientation_degrees");
         score.gradient_magnitude_w1 = metric("gradient_magnitude_w1");
+        if (entry.contains("structure_distance")) score.structure_distance = metric("structure_distance");
         score.bytes = entry["bytes"].integer(0, std::numeric_limits<long long>::max());
     }
 }
@@ -333,6 +335,7 @@ Json to_json(const TextureDescription& description)
             entry["model"] = score.model;
             entry["colour"] = score.colour;
             if (score.joint_colour) entry["joint_colour"] = true;  // absent: independent channels
+            if (!score.variant.empty()) entry["variant"] = score.variant;  // absent: the model's own fit
             entry["penalty"] = score.penalty;
             entry["radial_log_psd_db"] = metric(score.radial_log_psd_db);
             entry["polar_log_psd_db"] = metric(score.polar_log_psd_db);
@@ -340,6 +343,8 @@ Json to_json(const TextureDescription& description)
             entry["false_colour_rate"] = metric(score.false_colour_rate);
             entry["gradient_orientation_degrees"] = metric(score.gradient_orientation_degrees);
             entry["gradient_magnitude_w1"] = metric(score.gradient_magnitude_w1);
+            // Absent where the choice did not score it (the default, and every earlier file).
+            if (!std::isnan(score.structure_distance)) entry["structure_distance"] = score.structure_distance;
             entry["bytes"] = score.bytes;
             candidates.push_back(std::move(entry));
         }

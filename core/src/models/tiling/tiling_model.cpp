@@ -81,6 +81,24 @@ public:
         return parameters;
     }
 
+    std::vector<FitVariant> automatic_variants(const TextureDescription& fitted,
+                                               const std::set<std::string>& given) const override
+    {
+        // Sharper blends keep more of the photo's structure (fewer ghosts: "Blend contrast" in
+        // docs/models/tiling.md) and cost a little spectrum, so the choice weighs them, where it
+        // scores structure, against the fit's own γ = 1. The exemplar is the fit's.
+        if (given.count("blend-contrast")) return {};
+        std::vector<FitVariant> variants;
+        for (const char* contrast : {"4", "8"}) {
+            FitVariant& variant = variants.emplace_back();
+            variant.label = std::string("blend_contrast ") + contrast;
+            variant.description = fitted;
+            variant.description.parameters.get<TilingParameters>().blend_contrast = std::stod(contrast);
+            variant.description.provenance.options.push_back({"blend_contrast", contrast});
+        }
+        return variants;
+    }
+
     ModelParameters morph(const TextureDescription&, const TextureDescription&, double) const override
     {
         // Blending two exemplars image-wise would not give a texture "between" them.
