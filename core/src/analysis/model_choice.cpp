@@ -110,15 +110,17 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
     double best_penalty = std::numeric_limits<double>::infinity();
     for (const ModelScore& s : scores) best_penalty = std::min(best_penalty, s.penalty);
     // A fit's variants (Model::automatic_variants) hold its data and differ from it by an option's
-    // few bytes: they count as the size of their fit, and among equal sizes the lower penalty wins.
-    const auto same_fit = [](const ModelScore& a, const ModelScore& b) {
-        return a.model == b.model && a.colour == b.colour && a.joint_colour == b.joint_colour;
+    // few bytes: files of one model and colour within 1 % of each other count as one size (the
+    // smallest), and among equal sizes the lower penalty wins.
+    const auto same_size = [](const ModelScore& a, const ModelScore& b) {
+        return a.model == b.model && a.colour == b.colour && a.joint_colour == b.joint_colour &&
+               std::abs(a.bytes - b.bytes) < 0.01 * double(std::max(a.bytes, b.bytes));
     };
     std::vector<long long> size(scores.size());
     for (std::size_t i = 0; i < scores.size(); ++i) {
         size[i] = scores[i].bytes;
         for (const ModelScore& other : scores)
-            if (same_fit(scores[i], other) && other.variant.empty() && !scores[i].variant.empty()) size[i] = other.bytes;
+            if (same_size(scores[i], other)) size[i] = std::min(size[i], other.bytes);
     }
     std::size_t chosen = scores.size();
     for (std::size_t i = 0; i < scores.size(); ++i) {
@@ -185,18 +187,34 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string label = model.name() + " (" + to_string(candidate.colour_mode) +
                                   (candidate.joint_colour ? ", joint colour" : "") + ")";
         try {
-            Scored& fit = candidate.fits.emplace_back();
-            fit.description = analyze_one_model(
-                photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options), nullptr, &photo_side);
-            fit.score = score_against_photo(fit.description, photo_side, max_scoring_side, targets);
-            // Variants only where structure is scored: what they change is structure.
+            // The fit, then (only where structure is scored: what they change is structure) its
+            // refits with other options and each one's variants.
+            const AnalysisOptions own = options_for(model, candidate.colour_mode, candidate.joint_colour, options);
+            std::vector<std::vector<std::pair<std::string, std::string>>> option_sets{{}};
             if (options.structure_in_choice)
+                for (const auto& set : model.automatic_refits(photo.width, photo.height, given_options))
+                    option_sets.push_back(set);
+            for (const auto& set : option_sets) {
+                AnalysisOptions refit = own;
+                std::string label;
+                for (const auto& option : set) {
+                    refit.model_options.push_back(option);
+                    std::string key = option.first;  // as the provenance names it
+                    std::replace(key.begin(), key.end(), '-', '_');
+                    label += (label.empty() ? "" : ", ") + key + " " + option.second;
+                }
+                Scored& fit = candidate.fits.emplace_back();
+                fit.description = analyze_one_model(photo, refit, nullptr, &photo_side);
+                fit.score = score_against_photo(fit.description, photo_side, max_scoring_side, targets);
+                fit.score.variant = label;
+                if (!options.structure_in_choice) continue;
                 for (FitVariant& variant : model.automatic_variants(fit.description, given_options)) {
                     Scored& varied = candidate.fits.emplace_back();
                     varied.description = std::move(variant.description);
                     varied.score = score_against_photo(varied.description, photo_side, max_scoring_side, targets);
-                    varied.score.variant = variant.label;
+                    varied.score.variant = label + (label.empty() ? "" : ", ") + variant.label;
                 }
+            }
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
         }
@@ -230,17 +248,21 @@ int chosen_model_score(const TextureDescription& description)
                s.joint_colour == description.chroma_given_brightness.enabled();
     };
     const auto& options = description.provenance.options;
-    // A variant whose options the description carries, else the fit itself.
+    // The variant with the most options, all of which the description carries; else the fit itself.
+    int row = -1;
+    std::size_t row_options = 0;
     for (std::size_t i = 0; i < scores.size(); ++i) {
-        if (!same_fit(scores[i]) || scores[i].variant.empty()) continue;
+        if (!same_fit(scores[i])) continue;
+        const auto variant = variant_options(scores[i].variant);
         bool carried = true;
-        for (const auto& option : variant_options(scores[i].variant))
+        for (const auto& option : variant)
             carried = carried && std::find(options.begin(), options.end(), option) != options.end();
-        if (carried) return int(i);
+        if (carried && (row < 0 || variant.size() > row_options)) {
+            row = int(i);
+            row_options = variant.size();
+        }
     }
-    for (std::size_t i = 0; i < scores.size(); ++i)
-        if (same_fit(scores[i]) && scores[i].variant.empty()) return int(i);
-    return -1;
+    return row;
 }
 
 std::string format_model_choice(const TextureDescription& description)
@@ -260,7 +282,7 @@ std::string format_model_choice(const TextureDescription& description)
         structure = structure || !std::isnan(s.structure_distance);
     }
     const auto variant_cell = [&](const ModelScore& s) {
-        return variants ? value_text("%-17s ", s.variant.empty() ? "-" : s.variant.c_str()) : std::string();
+        return variants ? value_text("%-35s ", s.variant.empty() ? "-" : s.variant.c_str()) : std::string();
     };
     const auto structure_cell = [&](const std::string& cell) {
         return structure ? value_text(" %9s", cell.c_str()) : std::string();
@@ -268,7 +290,7 @@ std::string format_model_choice(const TextureDescription& description)
     char line[320];
     std::string text;
     std::snprintf(line, sizeof line, "%-8s %-10s %s%8s %10s %7s %7s %12s %10s %7s%s %10s\n", "model", "colour",
-                  variants ? value_text("%-17s ", "variant").c_str() : "", "penalty", "radial dB", "2D dB", "W1/σ",
+                  variants ? value_text("%-35s ", "variant").c_str() : "", "penalty", "radial dB", "2D dB", "W1/σ",
                   "false colour", "orient. °", "|∇| W1", structure_cell("structure").c_str(), "bytes");
     text += line;
     const int chosen_row = chosen_model_score(description);

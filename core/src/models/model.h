@@ -132,6 +132,17 @@ public:
         return {};
     }
 
+    /// Option sets (declared options, name → text) `--model auto` fits the model with again,
+    /// beside its own fit, where it scores structure: choices that need a refit (tiling's larger
+    /// exemplar) for a width × height photo. Each refit's variants are tried too. Options the caller
+    /// gave (`given`) are not varied. Most models offer none.
+    virtual std::vector<std::vector<std::pair<std::string, std::string>>> automatic_refits(
+        int width, int height, const std::set<std::string>& given) const
+    {
+        (void)width, (void)height, (void)given;
+        return {};
+    }
+
     /// The model's `stex analyze` options (capabilities.analysis), as declared.
     const std::vector<AnalysisOption>& analysis_options() const { return analysis_options_; }
 

@@ -8,6 +8,8 @@
 
 #include <stochtex/models/tiling_parameters.h>
 
+#include <algorithm>
+
 namespace stochtex {
 
 namespace {
@@ -97,6 +99,16 @@ public:
             variant.description.provenance.options.push_back({"blend_contrast", contrast});
         }
         return variants;
+    }
+
+    std::vector<std::vector<std::pair<std::string, std::string>>> automatic_refits(
+        int width, int height, const std::set<std::string>& given) const override
+    {
+        // A 512² exemplar where the automatic size keeps a smaller one: its sizing asks for a
+        // photo that holds the exemplar twice per side, so a photo 512 px across (palm bark,
+        // 512 × 2048) never gets one, though its bands are longer than 256 px.
+        if (given.count("exemplar-size") || std::min(width, height) < 512) return {};
+        return {{{"exemplar-size", "512"}}};
     }
 
     ModelParameters morph(const TextureDescription&, const TextureDescription&, double) const override
