@@ -45,9 +45,10 @@ struct AnalysisOptions {
     bool try_joint_colour = false;
     /// automatic_model only: score the candidates with the structure distance as a seventh term
     /// of the fidelity penalty (FidelityTargets::structure_distance = 0.25; docs/metrics.md,
-    /// "Structure"), and with it the variants of each fit a model offers (Model::automatic_variants:
-    /// tiling's blend contrast γ = 4 and 8). Off by default: it changes the choice on some photos
-    /// and costs ~60 % more time.
+    /// "Structure"), and with it the refits and variants a model offers (Model::automatic_refits,
+    /// automatic_variants: tiling's 512² exemplar, blend contrast γ = 4 and 8). Off by default: on
+    /// the shared photos the choice it makes misses the acceptance targets (docs/metrics.md, "In
+    /// the automatic choice"), and it costs ≈ 3× the time.
     bool structure_in_choice = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
