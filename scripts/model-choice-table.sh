@@ -2,7 +2,9 @@
 # What `stex analyze --model auto` chooses for each shared photo (../shared/exemplars, not the
 # height map), with its score table, and a contact sheet: per photo a row of 128² crops —
 # photo | wavelet | gabor | tiling | lrp (each model's own fit, in pca colour but the chosen one
-# in its chosen colour mode, rendered at the photo's pixel scale), the chosen one framed in white. Prints Markdown (docs/models/README.md's table).
+# in its chosen colour mode, rendered at the photo's pixel scale), the chosen one framed in white;
+# then the choice with `--choice-structure`, framed in grey, and the photo and that texture zoomed
+# out ×2. Prints Markdown (docs/models/README.md's table).
 #   usage: scripts/model-choice-table.sh [BUILD_DIR] [SHEET.jpg]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -56,10 +58,20 @@ PY
         fi
         row+=("$work/$name-$model.png")
     done
+    # Issue 33: the choice scoring structure (`--choice-structure`: tiling's sharper blends and
+    # larger exemplar tried too), framed in grey; then the photo and that texture zoomed out ×2
+    # (the photo's top-left 256² halved, `stex render --scale 2`), where ghosts and cut plates show.
+    "$stex" analyze "$photo" -o "$work/$name-structure.stex" --choice-structure >/dev/null
+    "$stex" render "$work/$name-structure.stex" -o "$work/$name-structure.png" --size 128x128 >/dev/null
+    oiiotool "$work/$name-structure.png" --cut 124x124+2+2 --fit:pad=1 128x128 --ch R,G,B \
+        --box:color=0.5,0.5,0.5:fill=0 0,0,127,127 -o "$work/$name-structure.png"
+    oiiotool "$photo" --cut 256x256+0+0 --resize 128x128 -o "$work/$name-0-half.png"
+    "$stex" render "$work/$name-structure.stex" -o "$work/$name-structure-half.png" --size 128x128 --scale 2 >/dev/null
+    row+=("$work/$name-structure.png" "$work/$name-0-half.png" "$work/$name-structure-half.png")
     rows+=("${row[@]}")
 done
 if [ -n "$sheet" ]; then
-    oiiotool --nosoftwareattrib "${rows[@]}" --mosaic:pad=4 5x$(( ${#rows[@]} / 5 )) --ch R,G,B --compression jpeg:85 -o "$sheet"
+    oiiotool --nosoftwareattrib "${rows[@]}" --mosaic:pad=4 8x$(( ${#rows[@]} / 8 )) --ch R,G,B --compression jpeg:85 -o "$sheet"
     echo
     echo "contact sheet: $sheet"
 fi

@@ -45,7 +45,10 @@ struct AnalysisOptions {
     bool try_joint_colour = false;
     /// automatic_model only: score the candidates with the structure distance as a seventh term
     /// of the fidelity penalty (FidelityTargets::structure_distance = 0.25; docs/metrics.md,
-    /// "Structure"). Off by default: it changes the choice on some photos and costs ~60 % more time.
+    /// "Structure"), and with it the refits and variants a model offers (Model::automatic_refits,
+    /// automatic_variants: tiling's 512² exemplar, blend contrast γ = 4 and 8). Off by default: on
+    /// the shared photos the choice it makes misses the acceptance targets (docs/metrics.md, "In
+    /// the automatic choice"), and it costs ≈ 3× the time.
     bool structure_in_choice = false;
     HistogramMode histogram = HistogramMode::automatic;
     int histogram_knots = 10;       ///< knots of each histogram map (≥ 4)
@@ -71,7 +74,8 @@ TextureDescription analyze(const Image& photo, const AnalysisOptions& options,
                            const ProgressCallback& progress = {});
 
 /// Which row of description.provenance.model_choice the description is (the same model, colour
-/// mode and joint colour); -1 when none is (a model was named, the table is empty).
+/// mode and joint colour, and the variant whose options its provenance carries, else the row
+/// without a variant); -1 when none is (a model was named, the table is empty).
 int chosen_model_score(const TextureDescription& description);
 
 /// The score table of a description whose model analysis chose (empty when a model was named):

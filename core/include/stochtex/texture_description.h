@@ -10,6 +10,7 @@
 #include <any>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -115,6 +116,9 @@ struct ModelScore {
     std::string model;
     std::string colour = "pca";               ///< the colour mode it was fitted with
     bool joint_colour = false;                ///< with joint colour (chroma given brightness)
+    /// A variant of the model's fit the choice also tried (Model::automatic_variants), as the
+    /// provenance options it adds, "name value" joined by ", " ("blend_contrast 8"); empty: the fit.
+    std::string variant;
     double penalty = 0;                       ///< fidelity_penalty(): lower is closer to the photo
     double radial_log_psd_db = 0;             ///< mean over RGB
     double polar_log_psd_db = 0;              ///< 2D (oriented) log-PSD distance of luma
@@ -122,6 +126,9 @@ struct ModelScore {
     double false_colour_rate = 0;             ///< a fraction
     double gradient_orientation_degrees = 0;
     double gradient_magnitude_w1 = 0;
+    /// Portilla–Simoncelli structure distance (StructureDistance::total); NaN where the choice did
+    /// not score it.
+    double structure_distance = std::numeric_limits<double>::quiet_NaN();
     long long bytes = 0;                      ///< its .stex file (embedded images included)
 };
 

@@ -26,7 +26,7 @@ std::string describe(const TextureDescription& d)
         std::string scores;
         for (const ModelScore& s : d.provenance.model_choice)
             scores += (scores.empty() ? "" : ", ") + s.model + (s.colour == "pca" ? "" : "/" + s.colour) +
-                      info_text(" %.3f", s.penalty);
+                      (s.variant.empty() ? "" : " [" + s.variant + "]") + info_text(" %.3f", s.penalty);
         out << "chosen by    auto (fidelity penalty: " << scores << ")\n";
     }
     out << "colour       " << to_string(d.colour_mode) << ", " << d.colour_space << "\n";

@@ -23,13 +23,42 @@ namespace stochtex {
 
 namespace {
 
+/// A fitted description and its score: a candidate's own fit or one of its variants.
+struct Scored {
+    TextureDescription description;
+    ModelScore score;
+};
+
 struct Candidate {
     const Model* model = nullptr;
     ColourMode colour_mode = ColourMode::pca;
     bool joint_colour = false;
-    TextureDescription description;
-    ModelScore score;
+    std::vector<Scored> fits;  ///< the fit, then its variants (Model::automatic_variants)
 };
+
+/// `text` printed with `format` (one %s), for the choice's table.
+std::string value_text(const char* format, const char* text)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, text);
+    return buffer;
+}
+
+/// "name value" pairs of a ModelScore::variant label.
+std::vector<std::pair<std::string, std::string>> variant_options(const std::string& label)
+{
+    std::vector<std::pair<std::string, std::string>> options;
+    std::size_t start = 0;
+    while (start < label.size()) {
+        std::size_t end = label.find(", ", start);
+        if (end == std::string::npos) end = label.size();
+        const std::string pair = label.substr(start, end - start);
+        const std::size_t space = pair.find(' ');
+        options.emplace_back(pair.substr(0, space), space == std::string::npos ? "" : pair.substr(space + 1));
+        start = end + 2;
+    }
+    return options;
+}
 
 /// The options a candidate is fitted with: the shared ones, and of the model options given only
 /// those it declares (`--impulses 8` is gabor's and lrp's, not wavelet's).
@@ -71,6 +100,7 @@ ModelScore score_against_photo(const TextureDescription& description, const Comp
     score.false_colour_rate = report.false_colour_rate;
     score.gradient_orientation_degrees = report.gradient_orientation_degrees;
     score.gradient_magnitude_w1 = report.gradient_magnitude_w1;
+    score.structure_distance = report.structure.total;  // NaN unless the photo's side holds structure
     score.bytes = static_cast<long long>(format_stex(description).size());
     return score;
 }
@@ -79,10 +109,25 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
 {
     double best_penalty = std::numeric_limits<double>::infinity();
     for (const ModelScore& s : scores) best_penalty = std::min(best_penalty, s.penalty);
+    // A fit's variants (Model::automatic_variants) hold its data and differ from it by an option's
+    // few bytes: files of one model and colour within 1 % of each other count as one size (the
+    // smallest), and among equal sizes the lower penalty wins.
+    const auto same_size = [](const ModelScore& a, const ModelScore& b) {
+        return a.model == b.model && a.colour == b.colour && a.joint_colour == b.joint_colour &&
+               std::abs(a.bytes - b.bytes) < 0.01 * double(std::max(a.bytes, b.bytes));
+    };
+    std::vector<long long> size(scores.size());
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        size[i] = scores[i].bytes;
+        for (const ModelScore& other : scores)
+            if (same_size(scores[i], other)) size[i] = std::min(size[i], other.bytes);
+    }
     std::size_t chosen = scores.size();
     for (std::size_t i = 0; i < scores.size(); ++i) {
         if (scores[i].penalty > best_penalty * (1 + model_choice_tolerance)) continue;
-        if (chosen == scores.size() || scores[i].bytes < scores[chosen].bytes) chosen = i;
+        if (chosen == scores.size() || size[i] < size[chosen] ||
+            (size[i] == size[chosen] && scores[i].penalty < scores[chosen].penalty))
+            chosen = i;
     }
     return chosen;
 }
@@ -123,6 +168,8 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
             throw Error("auto: unknown analysis option --" + option.first + " (no model declares it)");
 
     if (candidates.empty()) throw Error("auto: no registered model can analyse photos");
+    std::set<std::string> given_options;  // the caller's: not varied
+    for (const auto& option : options.model_options) given_options.insert(option.first);
 
     // The candidates side by side, one a worker: the fits are single-threaded, so this is what
     // fills the cores (each render then runs on its worker's thread; the result does not
@@ -140,9 +187,34 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         const std::string label = model.name() + " (" + to_string(candidate.colour_mode) +
                                   (candidate.joint_colour ? ", joint colour" : "") + ")";
         try {
-            candidate.description = analyze_one_model(
-                photo, options_for(model, candidate.colour_mode, candidate.joint_colour, options), nullptr, &photo_side);
-            candidate.score = score_against_photo(candidate.description, photo_side, max_scoring_side, targets);
+            // The fit, then (only where structure is scored: what they change is structure) its
+            // refits with other options and each one's variants.
+            const AnalysisOptions own = options_for(model, candidate.colour_mode, candidate.joint_colour, options);
+            std::vector<std::vector<std::pair<std::string, std::string>>> option_sets{{}};
+            if (options.structure_in_choice)
+                for (const auto& set : model.automatic_refits(photo.width, photo.height, given_options))
+                    option_sets.push_back(set);
+            for (const auto& set : option_sets) {
+                AnalysisOptions refit = own;
+                std::string label;
+                for (const auto& option : set) {
+                    refit.model_options.push_back(option);
+                    std::string key = option.first;  // as the provenance names it
+                    std::replace(key.begin(), key.end(), '-', '_');
+                    label += (label.empty() ? "" : ", ") + key + " " + option.second;
+                }
+                Scored& fit = candidate.fits.emplace_back();
+                fit.description = analyze_one_model(photo, refit, nullptr, &photo_side);
+                fit.score = score_against_photo(fit.description, photo_side, max_scoring_side, targets);
+                fit.score.variant = label;
+                if (!options.structure_in_choice) continue;
+                for (FitVariant& variant : model.automatic_variants(fit.description, given_options)) {
+                    Scored& varied = candidate.fits.emplace_back();
+                    varied.description = std::move(variant.description);
+                    varied.score = score_against_photo(varied.description, photo_side, max_scoring_side, targets);
+                    varied.score.variant = label + (label.empty() ? "" : ", ") + variant.label;
+                }
+            }
         } catch (const Error& e) {
             throw Error("auto: " + label + ": " + e.what());
         }
@@ -153,10 +225,14 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     });
 
     std::vector<ModelScore> scores;
-    for (const Candidate& c : candidates) scores.push_back(c.score);
-    const Candidate* chosen = &candidates[chosen_by_rule(scores)];
+    std::vector<const Scored*> fits;
+    for (const Candidate& c : candidates)
+        for (const Scored& fit : c.fits) {
+            scores.push_back(fit.score);
+            fits.push_back(&fit);
+        }
 
-    TextureDescription result = chosen->description;
+    TextureDescription result = fits[chosen_by_rule(scores)]->description;
     result.provenance.model_choice = scores;
     for (auto& [name, value] : result.provenance.options)
         if (name == "model") value = automatic_model;  // what was asked; description.model says what was chosen
@@ -167,11 +243,26 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
 int chosen_model_score(const TextureDescription& description)
 {
     const std::vector<ModelScore>& scores = description.provenance.model_choice;
-    for (std::size_t i = 0; i < scores.size(); ++i)
-        if (scores[i].model == description.model && scores[i].colour == to_string(description.colour_mode) &&
-            scores[i].joint_colour == description.chroma_given_brightness.enabled())
-            return int(i);
-    return -1;
+    const auto same_fit = [&](const ModelScore& s) {
+        return s.model == description.model && s.colour == to_string(description.colour_mode) &&
+               s.joint_colour == description.chroma_given_brightness.enabled();
+    };
+    const auto& options = description.provenance.options;
+    // The variant with the most options, all of which the description carries; else the fit itself.
+    int row = -1;
+    std::size_t row_options = 0;
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        if (!same_fit(scores[i])) continue;
+        const auto variant = variant_options(scores[i].variant);
+        bool carried = true;
+        for (const auto& option : variant)
+            carried = carried && std::find(options.begin(), options.end(), option) != options.end();
+        if (carried && (row < 0 || variant.size() > row_options)) {
+            row = int(i);
+            row_options = variant.size();
+        }
+    }
+    return row;
 }
 
 std::string format_model_choice(const TextureDescription& description)
@@ -184,30 +275,44 @@ std::string format_model_choice(const TextureDescription& description)
         std::snprintf(buffer, sizeof buffer, format, v);
         return std::string(buffer);
     };
-    char line[256];
+    // The variant and structure columns where the choice tried variants and scored structure.
+    bool variants = false, structure = false;
+    for (const ModelScore& s : scores) {
+        variants = variants || !s.variant.empty();
+        structure = structure || !std::isnan(s.structure_distance);
+    }
+    const auto variant_cell = [&](const ModelScore& s) {
+        return variants ? value_text("%-35s ", s.variant.empty() ? "-" : s.variant.c_str()) : std::string();
+    };
+    const auto structure_cell = [&](const std::string& cell) {
+        return structure ? value_text(" %9s", cell.c_str()) : std::string();
+    };
+    char line[320];
     std::string text;
-    std::snprintf(line, sizeof line, "%-8s %-10s %8s %10s %7s %7s %12s %10s %7s %10s\n", "model", "colour", "penalty",
-                  "radial dB", "2D dB", "W1/σ", "false colour", "orient. °", "|∇| W1", "bytes");
+    std::snprintf(line, sizeof line, "%-8s %-10s %s%8s %10s %7s %7s %12s %10s %7s%s %10s\n", "model", "colour",
+                  variants ? value_text("%-35s ", "variant").c_str() : "", "penalty", "radial dB", "2D dB", "W1/σ",
+                  "false colour", "orient. °", "|∇| W1", structure_cell("structure").c_str(), "bytes");
     text += line;
     const int chosen_row = chosen_model_score(description);
     for (std::size_t row = 0; row < scores.size(); ++row) {
         const ModelScore& s = scores[row];
         const bool chosen = int(row) == chosen_row;
         const std::string colour = s.colour + (s.joint_colour ? "+joint" : "");
-        std::snprintf(line, sizeof line, "%-8s %-10s %8.3f %10s %7s %7s %12s %10s %7s %10lld%s\n", s.model.c_str(),
-                      colour.c_str(), s.penalty,
+        std::snprintf(line, sizeof line, "%-8s %-10s %s%8.3f %10s %7s %7s %12s %10s %7s%s %10lld%s\n", s.model.c_str(),
+                      colour.c_str(), variant_cell(s).c_str(), s.penalty,
                       value(s.radial_log_psd_db, "%.2f").c_str(), value(s.polar_log_psd_db, "%.2f").c_str(),
                       value(s.w1_sigma, "%.3f").c_str(),
                       (value(100 * s.false_colour_rate, "%.2f") + " %").c_str(),
                       value(s.gradient_orientation_degrees, "%.2f").c_str(),
-                      value(s.gradient_magnitude_w1, "%.3f").c_str(), s.bytes,
+                      value(s.gradient_magnitude_w1, "%.3f").c_str(),
+                      structure_cell(value(s.structure_distance, "%.3f")).c_str(), s.bytes,
                       chosen ? "  ← chosen" : "");
         text += line;
     }
     std::snprintf(line, sizeof line,
-                  "rule: lowest penalty (mean of metric/target: radial 1.5 dB, 2D 1.5 dB, W1 0.1 σ, false colour 1 %%, "
-                  "orientation 5°, |∇| 0.1); within %.0f %% of it, the smallest file\n",
-                  100 * model_choice_tolerance);
+                  "rule: lowest penalty (mean of %s metric/target: radial 1.5 dB, 2D 1.5 dB, W1 0.1 σ, false colour 1 %%, "
+                  "orientation 5°, |∇| 0.1%s); within %.0f %% of it, the smallest file\n",
+                  structure ? "seven" : "six", structure ? ", structure 0.25" : "", 100 * model_choice_tolerance);
     text += line;
     return text;
 }

@@ -24,7 +24,8 @@ ModelScore score_against_photo(const TextureDescription& description, const Comp
 
 /// The rule: the index of the score to keep of `scores` (not empty), the lowest penalty or,
 /// among those within model_choice_tolerance of it (differences the metrics' own noise makes),
-/// the smallest file, then the first. Also what a model's fit keeps its own candidates by
+/// the smallest file (a fit's variant counts as its fit's size), then the lower penalty, then the
+/// first. Also what a model's fit keeps its own candidates by
 /// (FitInput::choose).
 std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 

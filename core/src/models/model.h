@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <string_view>
 #include <typeinfo>
@@ -62,6 +63,13 @@ struct FitInput {
     /// a fit keeps its candidates as the choice keeps models while the models stay below
     /// analysis/ (docs/architecture.md, "Layers").
     std::function<std::size_t(const std::vector<ModelScore>& scores)> choose;
+};
+
+/// A fit changed in options that need no refit (Model::automatic_variants).
+struct FitVariant {
+    /// The provenance options the change sets, "name value" joined by ", " (ModelScore::variant).
+    std::string label;
+    TextureDescription description;
 };
 
 class Model {
@@ -112,6 +120,28 @@ public:
     /// The light direction (capabilities.light_direction).
     virtual Vec3 light(const TextureDescription& description) const;
     virtual void set_light(TextureDescription& description, const Vec3& unit_direction) const;
+
+    /// Variants of a fit that `--model auto` scores beside it where it scores structure
+    /// (AnalysisOptions::structure_in_choice): copies of `fitted` with an option changed that needs
+    /// no refit, each naming the provenance options it sets ("blend_contrast 8"). Options the
+    /// caller gave (`given`, their keys) are not varied. Most models offer none.
+    virtual std::vector<FitVariant> automatic_variants(const TextureDescription& fitted,
+                                                       const std::set<std::string>& given) const
+    {
+        (void)fitted, (void)given;
+        return {};
+    }
+
+    /// Option sets (declared options, name → text) `--model auto` fits the model with again,
+    /// beside its own fit, where it scores structure: choices that need a refit (tiling's larger
+    /// exemplar) for a width × height photo. Each refit's variants are tried too. Options the caller
+    /// gave (`given`) are not varied. Most models offer none.
+    virtual std::vector<std::vector<std::pair<std::string, std::string>>> automatic_refits(
+        int width, int height, const std::set<std::string>& given) const
+    {
+        (void)width, (void)height, (void)given;
+        return {};
+    }
 
     /// The model's `stex analyze` options (capabilities.analysis), as declared.
     const std::vector<AnalysisOption>& analysis_options() const { return analysis_options_; }

@@ -252,6 +252,10 @@ ParameterSchema<ModelScore> make_model_score_block()
                       [](const ModelScore& score) { return score.joint_colour; },
                       [](const Field& f, ModelScore& score, const ReadContext&) { score.joint_colour = f.boolean(); },
                       [](const ModelScore&) { return Json(true); });
+    s.text("variant", &ModelScore::variant,
+           {"", "", "A variant of the model's fit the choice also tried (--choice-structure), as the provenance options it "
+                    "adds, \"name value\" joined by \", \" (\"blend_contrast 8\"); absent: the model's own fit."})
+        .optional_when([](const ModelScore& score) { return !score.variant.empty(); });
     s.custom({"penalty", "number", "finite, ≥ 0", "", "",
               "The fidelity penalty: lower is closer to the photo (metrics.md, Fidelity penalty).", {}, false},
              [](const Field& f, ModelScore& score, const ReadContext&) { score.penalty = f.number(); },
@@ -266,6 +270,9 @@ ParameterSchema<ModelScore> make_model_score_block()
     metric(s, "false_colour_rate", &ModelScore::false_colour_rate, "Share of pixels with colours the photo does not have (a fraction).");
     metric(s, "gradient_orientation_degrees", &ModelScore::gradient_orientation_degrees, "Gradient orientation W1, degrees.");
     metric(s, "gradient_magnitude_w1", &ModelScore::gradient_magnitude_w1, "Gradient magnitude W1.");
+    // Absent where the choice did not score it (the default, and every earlier file).
+    metric(s, "structure_distance", &ModelScore::structure_distance, "The structure distance (metrics.md, Structure), where the choice scored it.");
+    s.optional_when([](const ModelScore& score) { return !std::isnan(score.structure_distance); });
     s.integer("bytes", &ModelScore::bytes, 0, std::numeric_limits<long long>::max(),
               {"", "bytes", "The size of that candidate's .stex.", "≥ 0"},
               [](const ModelScore& score, const std::string& path, const std::string& source) {

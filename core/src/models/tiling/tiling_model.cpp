@@ -8,6 +8,8 @@
 
 #include <stochtex/models/tiling_parameters.h>
 
+#include <algorithm>
+
 namespace stochtex {
 
 namespace {
@@ -79,6 +81,34 @@ public:
             provenance.options.push_back({"blend_contrast", contrast});
         }
         return parameters;
+    }
+
+    std::vector<FitVariant> automatic_variants(const TextureDescription& fitted,
+                                               const std::set<std::string>& given) const override
+    {
+        // Sharper blends keep more of the photo's structure (fewer ghosts: "Blend contrast" in
+        // docs/models/tiling.md) and cost a little spectrum, so the choice weighs them, where it
+        // scores structure, against the fit's own γ = 1. The exemplar is the fit's.
+        if (given.count("blend-contrast")) return {};
+        std::vector<FitVariant> variants;
+        for (const char* contrast : {"4", "8"}) {
+            FitVariant& variant = variants.emplace_back();
+            variant.label = std::string("blend_contrast ") + contrast;
+            variant.description = fitted;
+            variant.description.parameters.get<TilingParameters>().blend_contrast = std::stod(contrast);
+            variant.description.provenance.options.push_back({"blend_contrast", contrast});
+        }
+        return variants;
+    }
+
+    std::vector<std::vector<std::pair<std::string, std::string>>> automatic_refits(
+        int width, int height, const std::set<std::string>& given) const override
+    {
+        // A 512² exemplar where the automatic size keeps a smaller one: its sizing asks for a
+        // photo that holds the exemplar twice per side, so a photo 512 px across (palm bark,
+        // 512 × 2048) never gets one, though its bands are longer than 256 px.
+        if (given.count("exemplar-size") || std::min(width, height) < 512) return {};
+        return {{{"exemplar-size", "512"}}};
     }
 
     ModelParameters morph(const TextureDescription&, const TextureDescription&, double) const override
