@@ -322,9 +322,7 @@ int OslCommand::run() const
     osl::write_osl_images(description, written);
     write_file_atomically(output, text);
     std::string images;
-    for (const std::string* path :
-         {&written.tile_2d, &written.tile_3d, &written.sphere_table, &written.moments, &written.rows_probe})
-        if (!path->empty()) images += (images.empty() ? "" : ", ") + *path;
+    for (const std::string& path : written.all()) images += (images.empty() ? "" : ", ") + path;
     std::printf("wrote %s (shader %s, %zu bytes) and the images it reads: %s\n", output.c_str(),
                 options.shader_name.c_str(), text.size(), images.c_str());
     return 0;
