@@ -296,4 +296,6 @@ int BatchCommands::run() const
     return exit_status(failed);
 }
 
+const CommandRegistration batch_registration = register_command<BatchCommands>(HelpPosition::batch, {"batch", "batch-report"});
+
 }  // namespace stex_cli

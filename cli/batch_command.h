@@ -4,21 +4,23 @@
 // docs/batch.md and docs/cluster.md.
 #pragma once
 
+#include "command_registry.h"
+
 #include <CLI/CLI.hpp>
 
 #include <memory>
 
 namespace stex_cli {
 
-class BatchCommands {
+class BatchCommands : public Command {
 public:
     /// Registers `batch` and `batch-report` on `app`.
     explicit BatchCommands(CLI::App& app);
     ~BatchCommands();
-    bool selected() const;
+    bool selected() const override;
     /// Runs the chosen one. The exit status is the number of photos that failed (at most 100;
     /// 0: every photo done); stochtex::Error for a batch that cannot start (main() exits 1).
-    int run() const;
+    int run() const override;
 
     struct Options;  // the options given (batch_command.cpp)
 

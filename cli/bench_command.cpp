@@ -47,4 +47,6 @@ int BenchCommand::run() const
     return 0;
 }
 
+const CommandRegistration bench_registration = register_command<BenchCommand>(HelpPosition::bench, {"bench"});
+
 }  // namespace stex_cli

@@ -2,6 +2,8 @@
 // next to the same texture baked and read through OIIO's TextureSystem (stochtex/throughput.h).
 #pragma once
 
+#include "command_registry.h"
+
 #include <CLI/CLI.hpp>
 
 #include <stochtex/throughput.h>
@@ -10,12 +12,12 @@
 
 namespace stex_cli {
 
-class BenchCommand {
+class BenchCommand : public Command {
 public:
     /// Registers `bench` and its options on `app`.
     explicit BenchCommand(CLI::App& app);
-    bool selected() const { return command_->parsed(); }
-    int run() const;
+    bool selected() const override { return command_->parsed(); }
+    int run() const override;
 
 private:
     CLI::App* command_;

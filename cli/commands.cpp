@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include "command_registry.h"
 #include "compare_figure.h"
 #include "progress_bar.h"
 
@@ -92,6 +93,48 @@ void AnalyzeCommand::add_model_options(CLI::App& command)
     }
 }
 
+// ---- analyze ---------------------------------------------------------------------------------
+
+void AnalyzeCommand::add_options(CLI::App& a)
+{
+    a.add_option("photo", photo, "Photo of a stochastic texture (any format OpenImageIO reads)")->required();
+    a.add_option("-o,--output", output, "Output .stex file")->required();
+    // Models and their own options come from the registry: each model's declared options
+    // (name, range, default, doc) become options here, and the core checks their values.
+    a.add_option("--model", model, model_option_help())->check(CLI::IsMember(analysable_models()))->capture_default_str();
+    colour_option =
+        a.add_option("--colour", colour,
+                     "Colour mode: pca (decorrelated), rgb (independent), rgb-shared (with --model auto and no "
+                     "--colour, each model is also tried in the other modes it declares: tiling in rgb)")
+            ->check(CLI::IsMember({"pca", "rgb", "rgb-shared"}))
+            ->capture_default_str();
+    a.add_option("--histogram", histogram,
+                 "Histogram matching: on, off, or auto (per channel, when it brings the histogram measurably closer)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
+    a.add_option("--joint-colour", joint_colour,
+                 "Joint colour (pca colour; wavelet, gabor and lrp): on ties each chroma axis's value and spread to "
+                 "brightness, as in the photo (independent channels make colours the photo never had: gravel's "
+                 "false-colour rate 14.7 % -> 1.7 %); off keeps three independent channels, which POV-Ray's "
+                 "procedural mode needs (stex pov bakes a joint-colour texture); auto: with --model auto each of "
+                 "those models is fitted both ways and the scores decide, a named model is fitted without")
+        ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str();
+    a.add_flag("--choice-structure", choice_structure,
+               "With --model auto: score the candidates also by the structure distance (a seventh term of the "
+               "fidelity penalty, target 0.25; docs/metrics.md, Structure). Off by default: it can change the choice");
+    a.add_option("--knots", knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
+    a.add_option("--bands", bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
+        ->check(CLI::Range(0, 24))->capture_default_str();
+    add_model_options(a);
+    a.add_option("--seed", seed, "Seed stored in the texture")->capture_default_str();
+    a.add_option("--colourspace,--colorspace", colour_space,
+                 "Colour space of the photo's values (default: what the file says, else sRGB)");
+    a.add_option("--unit-size", unit_size_m, "Physical width of the photo in metres (for scenes)")
+        ->check(positive_number())->capture_default_str();
+}
+
+const CommandRegistration analyze_registration = register_options_command<AnalyzeCommand>(
+    HelpPosition::analyze, "analyze", "Analyse a texture photo into a .stex procedural texture");
+
 int AnalyzeCommand::run() const
 {
     const auto start = std::chrono::steady_clock::now();
@@ -124,6 +167,29 @@ int AnalyzeCommand::run() const
                 std::size_t(std::filesystem::file_size(output)), photo.c_str(), image.width, image.height, seconds);
     return 0;
 }
+
+// ---- render ----------------------------------------------------------------------------------
+
+void RenderCommand::add_options(CLI::App& r)
+{
+    r.add_option("texture", texture, ".stex file")->required();
+    r.add_option("-o,--output", output, "Output image (.exr, .png, .jpg, .tif)")->required();
+    r.add_option("--size", size, "Output size WxH (default: the analysed photo's size)");
+    r.add_option("--scale", scale, "Exemplar pixels per output pixel (2: zoomed out ×2)")
+        ->check(positive_number())->capture_default_str();
+    r.add_option("--u", origin_u, "Texture-space u of the image's left edge (texture units)")->capture_default_str();
+    r.add_option("--v", origin_v, "Texture-space v of the image's top edge (texture units)")->capture_default_str();
+    r.add_flag("--solid", solid, "Evaluate the solid (3D) texture on the plane w = Z");
+    r.add_option("--z", z, "Depth of the solid slice (texture units)")->capture_default_str();
+    r.add_flag("--no-filter", no_filter, "Point-sample instead of filtering each pixel's footprint");
+    r.add_flag("--tileable", tileable,
+               "Make the image one period of the texture, so it tiles without a seam (band frequencies snap to fit)");
+    r.add_option("--threads", threads, "Worker threads (0: all cores)")->check(non_negative_number())->capture_default_str();
+    r.add_option("--seed", seed, "Override the texture's seed")->check(non_negative_number());
+}
+
+const CommandRegistration render_registration = register_options_command<RenderCommand>(
+    HelpPosition::render, "render", "Render a .stex texture to an image (EXR: scene-linear; PNG/JPEG: sRGB)");
 
 int RenderCommand::run() const
 {
@@ -171,6 +237,17 @@ int RenderCommand::run() const
     return 0;
 }
 
+// ---- models ----------------------------------------------------------------------------------
+
+void ModelsCommand::add_options(CLI::App& command)
+{
+    command.add_flag("--json", json, "Machine-readable: the registry as JSON (name, summary, capabilities, parameters, options)");
+    command.add_flag("--markdown", markdown, "Each model's .stex parameter table, as in docs/stex-format.md");
+}
+
+const CommandRegistration models_registration = register_options_command<ModelsCommand>(
+    HelpPosition::models, "models", "List the texture models: what each is for, what it can do, its parameters");
+
 int ModelsCommand::run() const
 {
     if (json) {
@@ -199,6 +276,13 @@ int ModelsCommand::run() const
     return 0;
 }
 
+// ---- info ------------------------------------------------------------------------------------
+
+void InfoCommand::add_options(CLI::App& command) { command.add_option("texture", texture, ".stex file")->required(); }
+
+const CommandRegistration info_registration = register_options_command<InfoCommand>(
+    HelpPosition::info, "info", "Print a .stex texture's parameters and statistics");
+
 int InfoCommand::run() const
 {
     const TextureDescription description = read_stex(texture);
@@ -206,6 +290,19 @@ int InfoCommand::run() const
                 describe(description).c_str());
     return 0;
 }
+
+// ---- compare ---------------------------------------------------------------------------------
+
+void CompareCommand::add_options(CLI::App& c)
+{
+    c.add_option("photo", photo, "The photo")->required();
+    c.add_option("texture", texture, ".stex file")->required();
+    c.add_option("-o,--output", output, "Side-by-side PNG: photo, synthesis, their PSDs and histograms");
+    c.add_option("--colourspace,--colorspace", colour_space, "Colour space of the photo's values");
+}
+
+const CommandRegistration compare_registration = register_options_command<CompareCommand>(
+    HelpPosition::compare, "compare", "Compare a photo with a texture: metrics, and a side-by-side figure");
 
 int CompareCommand::run() const
 {
@@ -231,6 +328,19 @@ int CompareCommand::run() const
     return 0;
 }
 
+// ---- morph -----------------------------------------------------------------------------------
+
+void MorphCommand::add_options(CLI::App& m)
+{
+    m.add_option("a", a, "Texture at t = 0")->required();
+    m.add_option("b", b, "Texture at t = 1")->required();
+    m.add_option("--t", t, "Interpolation parameter in [0, 1]")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    m.add_option("-o,--output", output, "Output .stex file")->required();
+}
+
+const CommandRegistration morph_registration = register_options_command<MorphCommand>(
+    HelpPosition::morph, "morph", "Interpolate two textures of the same model");
+
 int MorphCommand::run() const
 {
     check_output_path(output, "the texture");
@@ -239,6 +349,23 @@ int MorphCommand::run() const
     std::printf("wrote %s (t = %g between %s and %s)\n", output.c_str(), t, a.c_str(), b.c_str());
     return 0;
 }
+
+// ---- pov -------------------------------------------------------------------------------------
+
+void PovCommand::add_options(CLI::App& p)
+{
+    p.add_option("texture", texture, ".stex file")->required();
+    p.add_option("-o,--output", output, "Output include (.inc); baked mode also writes the image beside it (.exr)")->required();
+    p.add_option("--name", name, "Identifier prefix in the include (default: from the output file name)");
+    p.add_option("--mode", mode, "procedural (POV-Ray evaluates it: solid, unlimited) or baked (an image map; any model); "
+                                 "default: procedural where the model allows it")
+        ->check(CLI::IsMember({"procedural", "baked"}));
+    p.add_option("--bake-size", bake_size, "Baked mode: texels per side, 16 to 8192 (0: one texture unit at the photo's pixel scale, at most 2048)")
+        ->check(CLI::Range(0, 8192))->capture_default_str();
+}
+
+const CommandRegistration pov_registration = register_options_command<PovCommand>(
+    HelpPosition::pov, "pov", "Write a POV-Ray 3.7 include: the texture as SDL (procedural) or a baked tileable EXR");
 
 int PovCommand::run() const
 {
@@ -272,6 +399,29 @@ int PovCommand::run() const
     return 0;
 }
 
+// ---- bake ------------------------------------------------------------------------------------
+
+void BakeCommand::add_options(CLI::App& b)
+{
+    b.add_option("texture", texture, ".stex file")->required();
+    b.add_option("-o,--output", output, "Output image (.exr)")->required();
+    b.add_option("--size", size, "Level-0 texels per side")->check(CLI::Range(8, 32768))->capture_default_str();
+    b.add_option("--scale", scale, "Exemplar pixels per texel (1: the photo's pixel scale)")
+        ->check(positive_number())->capture_default_str();
+    b.add_option("--tile", tile, "Tile size (a power of two, 8 to 4096)")->capture_default_str();
+    b.add_flag("--half", half, "Store 16-bit half floats instead of 32-bit floats");
+    b.add_option("--threads", threads, "Worker threads (0: all cores)")->check(non_negative_number())->capture_default_str();
+    b.add_option("--seed", seed, "Override the texture's seed")->check(non_negative_number());
+    b.add_option("--positions", positions,
+                 "Instead: the solid texture at the texels of this position map (RGBA float: xyz, alpha = covered), "
+                 "e.g. a UV atlas of object coordinates baked by Blender");
+    b.add_option("--position-scale", position_scale, "With --positions: texture units per position unit")
+        ->check(positive_number())->capture_default_str();
+}
+
+const CommandRegistration bake_registration = register_options_command<BakeCommand>(
+    HelpPosition::bake, "bake", "Bake a texture into a tiled, MIP-mapped EXR: one seamless period, each level filtered by the model");
+
 int BakeCommand::run() const
 {
     TextureDescription description = read_stex(texture);
@@ -303,6 +453,19 @@ int BakeCommand::run() const
     return 0;
 }
 
+// ---- osl -------------------------------------------------------------------------------------
+
+void OslCommand::add_options(CLI::App& o)
+{
+    o.add_option("texture", texture, ".stex file")->required();
+    o.add_option("-o,--output", output, "Output shader (.osl); the images it reads are written beside it (docs/osl.md)")->required();
+    o.add_option("--name", name, "Shader name (default: stochtex_ + the output file's name)");
+    o.add_option("--tile-dir", tile_dir, "Folder the shader names for the images it reads (default: the output's folder, absolute)");
+}
+
+const CommandRegistration osl_registration = register_options_command<OslCommand>(
+    HelpPosition::osl, "osl", "Write an OSL shader with the texture's parameters built in (wavelet, gabor, tiling) and the images it reads");
+
 int OslCommand::run() const
 {
     namespace fs = std::filesystem;
@@ -326,9 +489,7 @@ int OslCommand::run() const
     osl::write_osl_images(description, written);
     write_file_atomically(output, text);
     std::string images;
-    for (const std::string* path :
-         {&written.tile_2d, &written.tile_3d, &written.sphere_table, &written.moments, &written.rows_probe})
-        if (!path->empty()) images += (images.empty() ? "" : ", ") + *path;
+    for (const std::string& path : written.all()) images += (images.empty() ? "" : ", ") + path;
     std::printf("wrote %s (shader %s, %zu bytes) and the images it reads: %s\n", output.c_str(),
                 options.shader_name.c_str(), text.size(), images.c_str());
     return 0;

@@ -1,5 +1,6 @@
-// The `stex` sub-commands. Each returns the process exit code and throws stochtex::Error for
-// bad input (main() prints it and exits 1). Option names are the public interface: later
+// The `stex` sub-commands built into the tool. Each declares its options (add_options) and
+// registers itself (command_registry.h) beside its run() in commands.cpp; run() returns the
+// process exit code and throws stochtex::Error for bad input (main() prints it and exits 1). Option names are the public interface: later
 // issues extend them, never rename them.
 #pragma once
 
@@ -28,6 +29,8 @@ struct AnalyzeCommand {
     CLI::Option* colour_option = nullptr;  ///< to tell whether --colour was given
     /// Adds every registered model's declared analysis options (--psd, --impulses, --J, …).
     void add_model_options(CLI::App& command);
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 
 private:
@@ -46,6 +49,8 @@ std::string model_option_help();
 
 struct ModelsCommand {
     bool json = false, markdown = false;
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
@@ -60,23 +65,31 @@ struct RenderCommand {
     bool tileable = false;  // the image is one period of a periodic texture
     int threads = 0;
     std::int64_t seed = -1; // -1: the texture's own seed
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
 struct InfoCommand {
     std::string texture;
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
 struct CompareCommand {
     std::string photo, texture, output;  // output: side-by-side PNG (optional)
     std::string colour_space;
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
 struct MorphCommand {
     std::string a, b, output;
     double t = 0.5;
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
@@ -84,6 +97,8 @@ struct PovCommand {
     std::string texture, output, name;  // name empty: from the output file's name
     std::string mode;                   // empty: procedural where the model has that form, else baked
     int bake_size = 0;                  // baked: pixels per side; 0: one texture unit at the photo's scale
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
@@ -97,12 +112,16 @@ struct BakeCommand {
     std::int64_t seed = -1;  // -1: the texture's own seed
     std::string positions;   // non-empty: bake the solid texture at this position map's texels
     double position_scale = 1.0;  // texture units per position unit
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 
 struct OslCommand {
     std::string texture, output, name;  // name empty: from the output file's name
     std::string tile_dir;               // where the shader looks for the noise tiles; empty: beside the output
+    /// Declares its options on its sub-command (commands.cpp, beside run()).
+    void add_options(CLI::App& command);
     int run() const;
 };
 

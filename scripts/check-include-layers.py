@@ -7,9 +7,11 @@ The order is the fenced ```layers block of docs/architecture.md (the one place i
 one layer per line, top first, folders relative to core/; a line's folders are siblings, and an
 entry ending in /* stands for each subfolder. A file may include files of its own folder and of
 every layer below its own; it may not include a layer above it, nor a sibling folder of its own
-layer (so `src/models/*`, the models' folders, do not include each other). A line
-`private FOLDER...` names folders no other folder includes, whatever its layer: the models'
-folders are reached through the registry (src/models/model.h), not into. Every file of core/src
+layer (so `src/models/*`, the models' folders, do not include each other). A `*` stands for any
+one folder, also inside an entry (`src/models/*/front_ends`: each model's front-end forms). A
+line `private FOLDER...` names folders no other folder includes, whatever its layer, except the
+folders inside them: the models' folders are reached through the registry (src/models/model.h),
+not into, but a model's own front-end forms use its folder. Every file of core/src
 and core/include/stochtex must belong to a layer, so a new folder is placed in the order before
 it is used. Exits 1 naming each include that breaks a rule (file, line, rule). Python 3
 standard library only: the test command runs it (CTest `IncludeLayers`).
@@ -60,22 +62,18 @@ class LayerOrder:
                 self.rank[unit] = rank
 
     def unit_of(self, path):
-        """(unit, rank) of a path relative to core/: the longest entry it lies under; an entry
-        ending in /* is one unit per subfolder (files directly in the parent are not in it)."""
+        """(unit, rank, pattern) of a path relative to core/: the longest entry it lies under; a `*`
+        in an entry stands for any one folder, so `src/models/*` is one unit per subfolder (files
+        directly in the parent are not in it) and `src/models/*/front_ends` one per model."""
         best = None
+        parts = path.split("/")
         for pattern, rank in self.rank.items():
-            if pattern.endswith("/*"):
-                parent = pattern[:-2] + "/"
-                if not path.startswith(parent):
-                    continue
-                rest = path[len(parent):]
-                if "/" not in rest:
-                    continue  # a file of the parent folder itself
-                unit = parent + rest.split("/", 1)[0]
-            else:
-                if not path.startswith(pattern + "/"):
-                    continue
-                unit = pattern
+            words = pattern.split("/")
+            if len(parts) <= len(words):
+                continue  # a file must lie inside the entry's folder
+            if not all(word == "*" or word == part for word, part in zip(words, parts)):
+                continue
+            unit = "/".join(parts[:len(words)])
             if best is None or len(unit) > len(best[0]):
                 best = (unit, rank, pattern)
         return best
@@ -128,6 +126,8 @@ def check(core, layers):
             if target_unit == unit:
                 continue
             if target_pattern in order.private:
+                if unit.startswith(target_unit + "/"):
+                    continue  # a folder inside a private one is its own files (a model's front-end forms)
                 rule = f"{target_unit} is private: only its own files include it; others reach it through a layer below it"
             elif target_rank > rank:
                 continue

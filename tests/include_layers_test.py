@@ -3,7 +3,8 @@
 it passes on the tree as it is, and it fails, naming file, line and rule, on a copy of the core
 given one include against the order: a model including analysis/ (the acceptance of issue 32),
 a model including another model's folder, analysis reaching into a model's folder, a public
-header including core/src, a folder placed in no layer. CTest `IncludeLayersSelfTest`."""
+header including core/src, a folder placed in no layer, a model including its front-end forms or
+one model's forms reaching into another model; a model's forms may use the whole core. CTest `IncludeLayersSelfTest`."""
 import importlib.util
 import shutil
 import subprocess
@@ -88,6 +89,26 @@ class IncludeLayers(unittest.TestCase):
     def test_a_folder_in_no_layer_fails(self):
         self.add_line("src/somewhere/new_thing.cpp", "int new_thing() { return 0; }")
         self.assert_one_problem("core/src/somewhere/new_thing.cpp:1: in no layer")
+
+    def test_a_models_front_end_forms_use_the_core_and_their_model(self):
+        # The top layer: analysis, the registry and the model's own folder are below it.
+        for included in ("analysis/model_choice.h", "models/model.h", "models/wavelet/band_leakage.h"):
+            self.add_line("src/models/wavelet/front_ends/wavelet_osl.cpp", f'#include "{included}"')
+        self.assertEqual(checker.check(self.core, self.layers), [])
+
+    def test_a_front_end_form_reaching_into_another_model_fails(self):
+        self.assert_include_fails("src/models/gabor/front_ends/gabor_osl.cpp", "models/wavelet/band_leakage.h",
+                                  "src/models/wavelet is private")
+
+    def test_a_model_including_its_front_end_forms_fails(self):
+        self.add_line("src/models/wavelet/front_ends/wavelet_form.h", "int wavelet_form();")
+        self.assert_include_fails("src/models/wavelet/wavelet_model.cpp", "front_ends/wavelet_form.h",
+                                  "src/models/wavelet is below src/models/wavelet/front_ends")
+
+    def test_front_end_forms_of_two_models_are_siblings(self):
+        self.add_line("src/models/wavelet/front_ends/wavelet_form.h", "int wavelet_form();")
+        self.assert_include_fails("src/models/gabor/front_ends/gabor_osl.cpp", "models/wavelet/front_ends/wavelet_form.h",
+                                  "siblings")
 
     def test_commented_out_includes_are_not_includes(self):
         self.add_line("src/models/wavelet/wavelet_model.cpp", '// #include "analysis/model_choice.h"')

@@ -3,7 +3,8 @@
 // interpolates. The image is float EXR: linear like the core's values, and — unlike an 8/16-bit
 // PNG — neither clamped to [0, 1] nor quantised. image_map reads EXR as linear data.
 #include "include_modes.h"
-#include "sdl_text.h"
+#include <stochtex/pov/pov_procedural_form.h>
+#include <stochtex/pov/sdl_text.h>
 
 #include <stochtex/error.h>
 #include <stochtex/render.h>

@@ -3,16 +3,11 @@
 
 #include <stochtex/pov/pov_include.h>
 
-#include <string>
-
 namespace stochtex::pov {
 
-/// procedural_include.cpp: POV-Ray evaluates the texture from its own calibrated noise.
+/// procedural_include.cpp: POV-Ray evaluates the texture, through the model's registered form.
 PovInclude make_procedural_include(const TextureDescription& description, const PovIncludeOptions& options);
 /// baked_include.cpp: one tileable period rendered by the core, mapped as a linear EXR.
 PovInclude make_baked_include(const TextureDescription& description, const PovIncludeOptions& options);
-
-/// The lines both modes' header comments start with: source, model, usage of the declared names.
-std::string include_preamble(const TextureDescription& description, const PovIncludeOptions& options);
 
 }  // namespace stochtex::pov

@@ -1,4 +1,5 @@
 #include <stochtex/pov/pov_include.h>
+#include <stochtex/pov/pov_procedural_form.h>
 
 #include <stochtex/error.h>
 #include <stochtex/model.h>

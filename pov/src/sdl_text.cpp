@@ -1,4 +1,4 @@
-#include "sdl_text.h"
+#include <stochtex/pov/sdl_text.h>
 
 #include <stochtex/error.h>
 

@@ -1,8 +1,8 @@
 // stochtex — OSL shaders from a texture description (`stex osl`; docs/osl.md).
 //
-// A model with an OSL form (its registry capability `osl`: wavelet, gabor, tiling) has a shader
-// template osl/stochtex_<model>.osl over a header of its maths osl/stochtex_<model>.h; the
-// generated shader is the template with the headers inlined and the texture's numbers (the
+// A model with an OSL form (its registry capability `osl`, and its form in osl_form.h's registry)
+// has a shader template osl/stochtex_<model>.osl over a header of its maths osl/stochtex_<model>.h;
+// the generated shader is the template with the headers inlined and the texture's numbers (the
 // core's <model>_shader_data.h) as its parameters' defaults: one self-contained file. It reads a
 // few images with closest-texel texture() lookups — wavelet: two noise tiles; gabor: the
 // sphere-average table; tiling: the exemplar's moment pyramid; and every model the row probe that
@@ -12,6 +12,7 @@
 #include <stochtex/texture_description.h>
 
 #include <string>
+#include <vector>
 
 namespace stochtex::osl {
 
@@ -19,13 +20,21 @@ namespace stochtex::osl {
 /// OIIO plugin, or a baked map).
 bool has_osl_form(const std::string& model);
 
-/// The images a shader reads, as written into it (absolute, or as the renderer resolves them);
-/// a model uses some of them, the others stay empty.
+/// One image a shader reads: the shader parameter naming it ("tile_2d") and its path.
+struct OslImage {
+    std::string parameter;
+    std::string path;
+};
+
+/// The images a shader reads, as written into it (absolute, or as the renderer resolves them):
+/// those of its model's form (osl_form.h), and the row probe every shader reads.
 struct OslImagePaths {
-    std::string tile_2d, tile_3d;  ///< wavelet: the noise tiles (stochtex_noise_2d.exr, _3d.exr)
-    std::string sphere_table;      ///< gabor: the retained-variance table (stochtex_gabor_sphere.exr)
-    std::string moments;           ///< tiling: the moment pyramid (<shader>_moments.exr)
+    std::vector<OslImage> images;  ///< the model's own, in the order its shader declares them
     std::string rows_probe;        ///< every model with a shader: the row probe (stochtex_rows.exr)
+    /// The path of the image `parameter`; throws Error if the form named no such image.
+    const std::string& path(const std::string& parameter) const;
+    /// Every path, the model's first, then the row probe's (empty for a model without a form).
+    std::vector<std::string> all() const;
 };
 
 /// The paths of the images a description's shader reads, in `folder`; `shader_stem` names the
@@ -50,10 +59,6 @@ void write_osl_images(const TextureDescription& description, const OslImagePaths
 
 /// A valid shader name from a file name ("out/rust 2.osl" → "stochtex_rust_2").
 std::string osl_shader_name_from_path(const std::string& path);
-
-/// Writes the wavelet noise tiles: the 2D tile (size² texels) and the 3D tile as an atlas of
-/// 8 × 8 slices.
-void write_noise_tiles(const std::string& path_2d, const std::string& path_3d);
 
 /// A shader source file as built into this program (osl/*.osl, osl/*.h, by file name).
 const std::string& shader_source(const std::string& file);

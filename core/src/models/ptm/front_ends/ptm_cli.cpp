@@ -1,5 +1,9 @@
-#include "ptm_commands.h"
-
+// `stex ptm …`: relightable textures (docs/models/ptm.md). Fit a PTM to photos under known
+// lights, synthesise larger PTMs in ψ-space, relight them, export normal and albedo maps, and
+// render the height-field test data with known truth.
+// The model's own command: it registers itself below and is compiled into `stex`
+// (cli/CMakeLists.txt), not the core.
+#include "command_registry.h"
 #include "commands.h"
 #include "plot.h"
 #include "progress_bar.h"
@@ -19,10 +23,27 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 namespace stex_cli {
 
 using namespace stochtex;
+
+class PtmCommands : public Command {
+public:
+    /// Registers the ptm command and its sub-commands on `app`.
+    explicit PtmCommands(CLI::App& app);
+    ~PtmCommands();
+    /// Whether the command line chose the ptm command.
+    bool selected() const override;
+    /// Runs the chosen sub-command; throws stochtex::Error for bad input.
+    int run() const override;
+
+private:
+    struct Options;
+    std::unique_ptr<Options> options_;
+};
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -445,5 +466,7 @@ int PtmCommands::Options::run_unbounded() const
                 unsigned(seed));
     return 0;
 }
+
+const CommandRegistration ptm_registration = register_command<PtmCommands>(HelpPosition::model_command, {"ptm"});
 
 }  // namespace stex_cli

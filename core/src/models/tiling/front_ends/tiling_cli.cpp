@@ -1,5 +1,10 @@
-#include "tiling_commands.h"
-
+// `stex tiling …`: tiling textures that are not analysed from one colour photo
+// (docs/models/tiling.md): colour-mapped noise pairs, phasor noise, normal maps from a height
+// photo, and the LEAN-filtered shading of a normal map. (`stex analyze --model tiling` covers
+// colour photos.)
+// The model's own command: it registers itself below and is compiled into `stex`
+// (cli/CMakeLists.txt), not the core.
+#include "command_registry.h"
 #include "commands.h"
 #include "progress_bar.h"
 
@@ -12,10 +17,25 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 namespace stex_cli {
 
 using namespace stochtex;
+
+class TilingCommands : public Command {
+public:
+    /// Registers the tiling command and its sub-commands on `app`.
+    explicit TilingCommands(CLI::App& app);
+    ~TilingCommands();
+    bool selected() const override;
+    /// Runs the chosen sub-command; throws stochtex::Error for bad input.
+    int run() const override;
+
+private:
+    struct Options;
+    std::unique_ptr<Options> options_;
+};
 
 struct TilingCommands::Options {
     CLI::App* tiling = nullptr;
@@ -141,5 +161,7 @@ int TilingCommands::run() const
     std::printf("wrote %s (%dx%d, %s shading)\n", o.output.c_str(), image.width, image.height, o.no_lean ? "mean-normal" : "LEAN");
     return 0;
 }
+
+const CommandRegistration tiling_registration = register_command<TilingCommands>(HelpPosition::model_command, {"tiling"});
 
 }  // namespace stex_cli
