@@ -5,6 +5,7 @@
 #include <stochtex/error.h>
 
 #include "spectra/fft.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,6 @@
 namespace stochtex {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNyquist = 0.5;  // cycles per pixel
 
 /// Radial bin k covers (0.5·2^(-(k+1)/b), 0.5·2^(-k/b)] cycles per pixel. Anchoring the edges at

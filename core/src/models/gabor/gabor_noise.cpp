@@ -2,6 +2,7 @@
 #include <stochtex/models/gabor_parameters.h>
 
 #include "models/gabor/gabor_raster_kernels.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,14 +27,14 @@ struct PhaseTable {
     PhaseTable()
     {
         for (int k = 0; k < phase_count; ++k) {
-            cosine[k] = float(std::cos(2 * M_PI * k / phase_count));
-            sine[k] = float(std::sin(2 * M_PI * k / phase_count));
+            cosine[k] = float(std::cos(2 * kPi * k / phase_count));
+            sine[k] = float(std::sin(2 * kPi * k / phase_count));
         }
     }
 };
 const PhaseTable phase_table;
 
-double phase_angle(int index) { return 2 * M_PI * index / phase_count; }
+double phase_angle(int index) { return 2 * kPi * index / phase_count; }
 
 /// SplitMix64's output function: a strong 64-bit mixer (Steele et al. 2014).
 inline std::uint64_t mix64(std::uint64_t z)
@@ -61,7 +62,7 @@ inline std::int64_t floor_index(double x)
 /// P(χ² with 3 degrees of freedom ≤ x): the energy fraction of a 3D Gaussian inside a sphere.
 double chi_square_3_cdf(double x)
 {
-    return std::erf(std::sqrt(x / 2)) - std::sqrt(2 * x / M_PI) * std::exp(-x / 2);
+    return std::erf(std::sqrt(x / 2)) - std::sqrt(2 * x / kPi) * std::exp(-x / 2);
 }
 
 }  // namespace
@@ -97,8 +98,8 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     key_2d_ = mix64(parameters.seed ^ 0x2d2d2d2d2d2d2d2dull);
     key_3d_ = mix64(parameters.seed ^ 0x3d3d3d3d3d3d3d3dull);
     // One impulse per cell: the cell's area (volume) is that of the support disc (ball) over N.
-    cell_x_ = cell_y_ = radius_ * std::sqrt(M_PI / n);
-    cell_3d_ = radius_ * std::cbrt(4 * M_PI / (3 * n));
+    cell_x_ = cell_y_ = radius_ * std::sqrt(kPi / n);
+    cell_3d_ = radius_ * std::cbrt(4 * kPi / (3 * n));
     const bool periodic = parameters.period[0] > 0 && parameters.period[1] > 0;
     if (periodic) {
         if (!(parameters.period[0] >= 2 * radius_ && parameters.period[1] >= 2 * radius_))
@@ -115,7 +116,7 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     // integral is (2a²)^(-n/2) times the Gaussian's energy fraction inside the support: 1 − cutoff²
     // in 2D, a χ²₃ probability in 3D.
     const double energy_2d = 1 - envelope_cutoff * envelope_cutoff;
-    const double energy_3d = chi_square_3_cdf(4 * M_PI * a * a * radius_ * radius_);
+    const double energy_3d = chi_square_3_cdf(4 * kPi * a * a * radius_ * radius_);
     gain_2d_ = 1 / std::sqrt(density_2d * 0.5 / (2 * a * a) * energy_2d);
     gain_3d_ = 1 / std::sqrt(density_3d * 0.5 * std::pow(2 * a * a, -1.5) * energy_3d);
 
@@ -130,7 +131,7 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     }
 }
 
-double GaborNoise::support_radius(double bandwidth) { return std::sqrt(-std::log(envelope_cutoff) / M_PI) / bandwidth; }
+double GaborNoise::support_radius(double bandwidth) { return std::sqrt(-std::log(envelope_cutoff) / kPi) / bandwidth; }
 
 std::uint64_t GaborNoise::cell_key_2d(std::int64_t i, std::int64_t j) const
 {
@@ -321,7 +322,7 @@ template <bool Solid>
 void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
                            const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const
 {
-    const double a = parameters_.bandwidth, pi_a2 = M_PI * a * a;
+    const double a = parameters_.bandwidth, pi_a2 = kPi * a * a;
     const double reach = radius_ * span_margin, reach2 = reach * reach;
     const Symmetric2& inverse = filter.inverse_a;
     const Symmetric2& damping = filter.damping;
@@ -549,8 +550,8 @@ double GaborNoise::reference_2d(double x, double y, int channel) const
         const double dx = x - impulse.position[0], dy = y - impulse.position[1];
         const double d2 = dx * dx + dy * dy;
         if (d2 > radius_ * radius_) continue;
-        sum += std::exp(-M_PI * a * a * d2) *
-               std::cos(2 * M_PI * (impulse.omega[0] * dx + impulse.omega[1] * dy) + impulse.phase[channel]);
+        sum += std::exp(-kPi * a * a * d2) *
+               std::cos(2 * kPi * (impulse.omega[0] * dx + impulse.omega[1] * dy) + impulse.phase[channel]);
     }
     return sum * gain_2d_;
 }
@@ -563,7 +564,7 @@ double GaborNoise::reference_3d(const Vec3& p, int channel) const
         const Vec3 d{p[0] - impulse.position[0], p[1] - impulse.position[1], p[2] - impulse.position[2]};
         const double d2 = dot3(d, d);
         if (d2 > radius_ * radius_) continue;
-        sum += std::exp(-M_PI * a * a * d2) * std::cos(2 * M_PI * dot3(impulse.omega, d) + impulse.phase[channel]);
+        sum += std::exp(-kPi * a * a * d2) * std::cos(2 * kPi * dot3(impulse.omega, d) + impulse.phase[channel]);
     }
     return sum * gain_3d_;
 }
