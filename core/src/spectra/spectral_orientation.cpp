@@ -1,5 +1,6 @@
+#include "spectra/spectral_orientation.h"
+
 #include <stochtex/error.h>
-#include <stochtex/metrics.h>
 
 #include "spectra/fft.h"
 #include "numerics/constants.h"

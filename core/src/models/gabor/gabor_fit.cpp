@@ -2,6 +2,7 @@
 
 #include "models/gabor/gabor_statistics.h"
 #include "numerics/constants.h"
+#include "spectra/power_spectrum.h"
 
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>

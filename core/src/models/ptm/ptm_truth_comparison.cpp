@@ -5,6 +5,7 @@
 
 #include "models/ptm/ptm_functions.h"
 #include "numerics/constants.h"
+#include "spectra/spectral_orientation.h"
 
 #include <algorithm>
 #include <cmath>
