@@ -10,8 +10,21 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 rounds="${2:-3}"
 command -v python3 >/dev/null || { echo "targets.sh: python3 is not installed" >&2; exit 1; }
-for program in wavelet_bench gabor_bench tiling_bench lrp_bench; do
-  [ -x "$build/bench/$program" ] || { echo "targets.sh: $build/bench/$program not found (build it)" >&2; exit 1; }
+source "$root/scripts/registry-models.sh"
+# Each registered model's benchmark program, <model>_bench, and the benchmarks of it that the
+# targets name (ptm's raster is timed by tiling_bench, whose texture it shares).
+declare -A filter=(
+  [wavelet]='Render(2D|3D)/512x512/bands:8/hist:on/threads:'
+  [gabor]='Texture/gabor/|Noise/raster-2D-filtered/anisotropic/threads:1|Ref/Perlin3D'
+  [tiling]='Render/(Raster/(colour|colour_map|colour_map_pair|phasor|ptm)|OneTap/colour)/'
+  [lrp]='Render2D/lrp/J:50,L:8'
+)
+models=() untimed=()
+for model in $(registry_models "$build/cli/stex"); do
+  if [ -n "${filter[$model]:-}" ]; then models+=("$model"); else untimed+=("$model"); fi
+done
+for model in "${models[@]}"; do
+  [ -x "$build/bench/${model}_bench" ] || { echo "targets.sh: $build/bench/${model}_bench not found (build it)" >&2; exit 1; }
 done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -22,17 +35,15 @@ run() {  # program filter: medians of the filtered benchmarks as JSON in $work/p
   "$build/bench/$1" --benchmark_filter="$2" --benchmark_repetitions="$rounds" \
     --benchmark_report_aggregates_only=true --benchmark_out="$work/$1.json" --benchmark_out_format=json >/dev/null 2>&1
 }
-run wavelet_bench 'Render(2D|3D)/512x512/bands:8/hist:on/threads:'
-run gabor_bench 'Texture/gabor/|Noise/raster-2D-filtered/anisotropic/threads:1|Ref/Perlin3D'
-run tiling_bench 'Render/(Raster/(colour|colour_map|colour_map_pair|phasor|ptm)|OneTap/colour)/'
-run lrp_bench 'Render2D/lrp/J:50,L:8'
+for model in "${models[@]}"; do run "${model}_bench" "${filter[$model]}"; done
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+[ ${#untimed[@]} -eq 0 ] || echo "registered models without a target of their own: ${untimed[*]}"
 
-python3 - "$work" <<'EOF'
+python3 - "$work" "${models[@]}" <<'EOF'
 import json, sys
 work = sys.argv[1]
 median = {}
-for program in ("wavelet_bench", "gabor_bench", "tiling_bench", "lrp_bench"):
+for program in (model + "_bench" for model in sys.argv[2:]):
     for b in json.load(open(f"{work}/{program}.json"))["benchmarks"]:
         # One round has no aggregates: its single run is the median.
         if b.get("aggregate_name") == "median" or b.get("run_type") == "iteration":

@@ -8,6 +8,8 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
 stex="$build/cli/stex"
+source "$root/scripts/registry-models.sh"
+models=($(registry_models "$stex" analysis joint_colour))
 exemplars="$root/../shared/exemplars"
 [ -d "$exemplars" ] || { echo "no $exemplars" >&2; exit 1; }
 work="$(mktemp -d)"
@@ -24,7 +26,7 @@ echo "| photo | model | false colour off → on | W1/σ off → on | log-PSD dB 
 echo "|---|---|---|---|---|"
 for name in gravel karst_rock palm_bark sandy_rock grass rusted_metal concrete dirt sand_dunes; do
     oiiotool "$exemplars/$name.png" --cut 512x512+0+0 -o "$work/$name.png"
-    for model in wavelet gabor lrp; do
+    for model in "${models[@]}"; do
         for joint in off on; do
             "$stex" analyze "$work/$name.png" -o "$work/$name-$model-$joint.stex" --model "$model" \
                 --joint-colour "$joint" >/dev/null

@@ -3,14 +3,15 @@
 # model with its defaults, then `stex compare` at the photo's size; one Markdown row per photo ×
 # model with the radial and 2D log-PSD distances (and the 2D one's angular part), the gradient distances, the false-colour rate,
 # W1/σ and the seconds analyse and compare took.
-# Usage: scripts/metrics-table.sh [build-dir] [models…] (default: build; wavelet gabor tiling lrp).
+# Usage: scripts/metrics-table.sh [build-dir] [models…] (default: build; the registry's models with analysis).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
 shift || true
-models=("${@:-wavelet gabor tiling lrp}")
-read -r -a models <<<"${models[*]}"
 stex="$build/cli/stex"
+source "$root/scripts/registry-models.sh"
+models=("$@")
+[ ${#models[@]} -gt 0 ] || models=($(registry_models "$stex" analysis))
 exemplars="$root/../shared/exemplars"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # What `stex analyze --model auto` chooses for each shared photo (../shared/exemplars, not the
 # height map), with its score table, and a contact sheet: per photo a row of 128² crops —
-# photo | wavelet | gabor | tiling | lrp (each model's own fit, in pca colour but the chosen one
-# in its chosen colour mode, rendered at the photo's pixel scale), the chosen one framed in white;
-# then the choice with `--choice-structure`, framed in grey, and the photo and that texture zoomed
-# out ×2. Prints Markdown (docs/models/README.md's table).
+# photo | each model with analysis, in the registry's order (each model's own fit, in pca colour but
+# the chosen one in its chosen colour mode, rendered at the photo's pixel scale), the chosen one
+# framed in white; then the choice with `--choice-structure`, framed in grey, and the photo and that
+# texture zoomed out ×2. Prints Markdown (docs/models/README.md's table).
 #   usage: scripts/model-choice-table.sh [BUILD_DIR] [SHEET.jpg]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,7 +15,8 @@ exemplars="$root/../shared/exemplars"
 [ -d "$exemplars" ] || { echo "no $exemplars" >&2; exit 1; }
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-models=(wavelet gabor tiling lrp)
+source "$root/scripts/registry-models.sh"
+models=($(registry_models "$stex" analysis))
 rows=()
 echo "| photo | chosen | penalty of each candidate | chosen: radial dB, 2D dB, W1/σ, false colour, orientation °, \|∇\| W1 | bytes | analyse s |"
 echo "|---|---|---|---|---|---|"
@@ -71,7 +72,8 @@ PY
     rows+=("${row[@]}")
 done
 if [ -n "$sheet" ]; then
-    oiiotool --nosoftwareattrib "${rows[@]}" --mosaic:pad=4 8x$(( ${#rows[@]} / 8 )) --ch R,G,B --compression jpeg:85 -o "$sheet"
+    columns=$(( ${#models[@]} + 4 ))  # the photo, each model, the structure choice, both zoomed out
+    oiiotool --nosoftwareattrib "${rows[@]}" --mosaic:pad=4 ${columns}x$(( ${#rows[@]} / columns )) --ch R,G,B --compression jpeg:85 -o "$sheet"
     echo
     echo "contact sheet: $sheet"
 fi

@@ -12,6 +12,16 @@ out_file="${2:?usage: $0 BUILD_DIR OUT_FILE [WORK_DIR]}"
 work="${3:-$(mktemp -d)}"
 stex="$build/cli/stex"
 photo="$root/data/exemplars/concrete_512.png"
+source "$root/scripts/registry-models.sh"
+# The models come from the registry, by capability (each from the analysed ones, whose .stex
+# files the later steps reuse); the first model with a front-end's form stands for that
+# front-end (one line each, as it was when one model had them).
+analysed=($(registry_models "$stex" analysis))
+solid=($(registry_models "$stex" analysis solid))
+first() { local names; names=($(registry_models "$stex" "$@")); echo "${names[0]}"; }
+morph=$(first analysis morph)
+pov=$(first analysis pov_procedural)
+osl=$(first analysis osl)
 mkdir -p "$work"
 : >"$out_file"
 fingerprint() {  # label file
@@ -31,10 +41,10 @@ render() {  # label stex output args...
 }
 
 small=(--size 96x80)
-for model in wavelet gabor tiling lrp; do
+for model in "${analysed[@]}"; do
   t="$work/$model.stex"
   extra=()
-  case "$model" in
+  case "$model" in  # smaller than the defaults, for speed; other models analyse with theirs
     gabor) extra=(--bands 4 --impulses 8) ;;
     lrp) extra=(--J 24 --L 4) ;;
   esac
@@ -52,23 +62,24 @@ for model in wavelet gabor tiling lrp; do
   fingerprint "$model plugin mip1" "$work/$model-oiio.exr"
 done
 # Solid renders for the models that have a solid form.
-for model in wavelet gabor; do
+for model in "${solid[@]}"; do
   render "$model solid" "$work/$model.stex" "$model-solid.exr" "${small[@]}" --solid --z 0.37
   render "$model solid zoom" "$work/$model.stex" "$model-solid-zoom.exr" "${small[@]}" --solid --z -2 --scale 5
 done
 # The solid bake at the texels of a position map (a sheared ramp, every texel covered).
 oiiotool --pattern fill:topleft=0,0,0,1:topright=2,0,0.5,1:bottomleft=0,1.5,1,1:bottomright=2,1.5,1.5,1 48x40 4 \
   -d float -o "$work/positions.exr"
-for model in wavelet gabor tiling; do
+# Tiling too: not a solid noise, but its triplanar blend is what a solid bake of it evaluates.
+for model in "${solid[@]}" tiling; do
   "$stex" bake "$work/$model.stex" -o "$work/$model-solid-map.exr" --positions "$work/positions.exr" --position-scale 0.5 >/dev/null
   fingerprint "$model bake positions" "$work/$model-solid-map.exr"
 done
-"$stex" morph "$work/wavelet.stex" "$work/wavelet.stex" --t 0.5 -o "$work/morph.stex" >/dev/null
-fingerprint "wavelet morph" "$work/morph.stex"
-"$stex" pov "$work/wavelet.stex" -o "$work/wavelet.inc" --name T >/dev/null
-fingerprint "wavelet pov include" "$work/wavelet.inc"
-"$stex" osl "$work/wavelet.stex" -o "$work/wavelet.osl" --tile-dir /tiles >/dev/null
-fingerprint "wavelet osl shader" "$work/wavelet.osl"
+"$stex" morph "$work/$morph.stex" "$work/$morph.stex" --t 0.5 -o "$work/morph.stex" >/dev/null
+fingerprint "$morph morph" "$work/morph.stex"
+"$stex" pov "$work/$pov.stex" -o "$work/$pov.inc" --name T >/dev/null
+fingerprint "$pov pov include" "$work/$pov.inc"
+"$stex" osl "$work/$osl.stex" -o "$work/$osl.osl" --tile-dir /tiles >/dev/null
+fingerprint "$osl osl shader" "$work/$osl.osl"
 
 # ptm: relightable test data from a synthetic height map, fitted, rendered, relit.
 oiiotool --pattern noise:type=uniform:min=0:max=1:seed=3 48x48 1 --blur 5x5 -d uint16 -o "$work/height.png"

@@ -3,14 +3,16 @@
 # `--model auto` (the CLI's default: today's automatic choice) and with each model's defaults,
 # then `stex compare` at the photo's size; one Markdown row per photo × model with the structure
 # distance and its five parts, and the 2D log-PSD distance and gradient magnitude W1 beside them.
-# Usage: scripts/structure-table.sh [build-dir] [models…] (default: build; auto tiling lrp gabor wavelet).
+# Usage: scripts/structure-table.sh [build-dir] [models…] (default: build; auto, then the registry's
+# models with analysis).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
 shift || true
-models=("${@:-auto tiling lrp gabor wavelet}")
-read -r -a models <<<"${models[*]}"
 stex="$build/cli/stex"
+source "$root/scripts/registry-models.sh"
+models=("$@")
+[ ${#models[@]} -gt 0 ] || models=(auto $(registry_models "$stex" analysis))
 source "$root/scripts/compare-report.sh"  # $exemplars, $work, after, part
 
 echo "| photo | model | structure distance | marginals | auto-correlation | cross-orientation | cross-scale | phase | 2D log-PSD dB | gradient magnitude W1 |"

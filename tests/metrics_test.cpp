@@ -6,6 +6,7 @@
 #include "analysis/distribution_distances.h"
 #include "analysis/gradient_statistics.h"
 #include "analysis/spectral_distances.h"
+#include "numerics/constants.h"
 #include "spectra/fft.h"
 #include "test_support.h"
 
@@ -19,8 +20,6 @@
 
 namespace stochtex {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<float> white_noise(int width, int height, double stddev, unsigned seed) {
     std::mt19937 rng(seed);

@@ -1,8 +1,11 @@
 // stochtex — texture statistics and distances: the one place where "how close is this
 // synthesis to that photo" is defined. Used by tests, `stex compare` and the benchmarks.
-// Declared here: what front-ends and the models' fits call. The single measures that only
-// compare_images and the tests call (2D spectral distances, gradient and colour statistics)
-// are internal, declared beside their code in core/src/analysis/.
+// Declared here: what front-ends and the models' fits call, and the types of the report.
+// Defined below the models where the fits call them (radial_psd and log_psd_distance_db in
+// core/src/spectra/, W1 in core/src/numerics/), so no model calls up into analysis/. The
+// measures that only the core's own code and the tests call (the polar spectrum, the spectral
+// orientation, the 2D spectral distances, gradient and colour statistics) are internal,
+// declared beside their code in core/src/spectra/ and core/src/analysis/.
 #pragma once
 
 #include <stochtex/image.h>
@@ -38,30 +41,14 @@ constexpr int resolved_bin_samples = 128;
 /// at least min_samples samples, or are exact) of 10·log10(Pa/Pb), in dB.
 double log_psd_distance_db(const RadialPsd& a, const RadialPsd& b, int min_samples = resolved_bin_samples);
 
-/// The orientation of one channel's power spectrum (mean removed; Moisan's periodic component,
-/// so image edges add no "+"): the power-weighted mean of e^{2iθ} over all frequencies, θ a
-/// frequency's angle from the x axis towards y up. strength in [0, 1] (0: no preferred
+/// The orientation of one channel's power spectrum (spectra/spectral_orientation.h; mean
+/// removed; Moisan's periodic component, so image edges add no "+"): the power-weighted mean of
+/// e^{2iθ} over all frequencies, θ a frequency's angle from the x axis towards y up. strength in [0, 1] (0: no preferred
 /// direction); angle in (−90°, 90°], the dominant frequency direction. A rough surface lit from
 /// azimuth φ gains power along φ: relit textures must match their truth in this too.
 struct SpectralOrientation {
     double strength = 0, angle_degrees = 0;
 };
-SpectralOrientation spectral_orientation(const std::vector<float>& plane, int width, int height);
-
-/// The same periodogram density as radial_psd (mean removed, Hann window, power-compensated,
-/// density per unit frequency area, so sizes compare) on a log-polar grid: radial_psd's
-/// log-spaced radius bins crossed with angle_bins cells of the frequency angle θ mod 180°
-/// (θ from the x axis towards y up; cell k centred on k·180°/angle_bins; a real image's
-/// spectrum is point-symmetric, so θ and θ + 180° are the same samples).
-struct PolarPsd {
-    int bins_per_octave = 4, angle_bins = 12;
-    std::vector<double> frequency;  ///< radius bin centres, ascending, as radial_psd's
-    /// frequency.size()·angle_bins, radius-major: the mean density and the number of FFT samples
-    /// (mirrors counted) of each cell; 0 and 0 where no sample falls.
-    std::vector<double> power, samples;
-};
-PolarPsd polar_psd(const std::vector<float>& plane, int width, int height, int bins_per_octave = 4,
-                   int angle_bins = 12);
 
 /// One channel's periodogram density (radial_psd's estimator) on a centred size×size grid for
 /// display: cell (i, j) holds the mean over the FFT samples with frequency
@@ -100,7 +87,8 @@ struct StructureDistance {
 
 /// Everything `stex compare` prints, per RGB channel where it applies. A comment naming a
 /// function not declared here names an internal one in core/src/analysis/ (spectral_distances.h,
-/// gradient_statistics.h, colour_statistics.h); docs/metrics.md describes each measure.
+/// gradient_statistics.h, colour_statistics.h) or core/src/spectra/ (power_spectrum.h);
+/// docs/metrics.md describes each measure.
 struct ComparisonReport {
     std::array<double, 3> mean_reference{}, mean_test{};
     std::array<double, 3> stddev_reference{}, stddev_test{};

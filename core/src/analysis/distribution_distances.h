@@ -1,14 +1,14 @@
-// stochtex — the distribution distances only compare_images and the tests call: W1 of
-// orientation histograms on the circle, and the sorted samples compare_images makes of each
-// photo once (wasserstein1 and wasserstein1_of_sorted, which the fits use, are in metrics.h).
+// stochtex — the distribution distance only compare_images and the tests call: W1 of
+// orientation histograms on the circle. W1 of samples (wasserstein1 and wasserstein1_of_sorted,
+// public in metrics.h, which the fits use) and the sorted samples compare_images makes of each
+// photo once (sorted_doubles) are below the models, in numerics/wasserstein.h.
 #pragma once
+
+#include "numerics/wasserstein.h"
 
 #include <vector>
 
 namespace stochtex {
-
-/// A sample as doubles, sorted ascending (what W1 compares).
-std::vector<double> sorted_doubles(const std::vector<float>& sample);
 
 /// 1-Wasserstein distance on the circle of circumference 180° between two orientation
 /// histograms of the same bin count, in degrees: the mean angle the gradient energy of one must

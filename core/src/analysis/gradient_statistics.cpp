@@ -2,6 +2,8 @@
 // (analysis/gradient_statistics.h).
 #include "analysis/gradient_statistics.h"
 
+#include "numerics/constants.h"
+
 #include <stochtex/error.h>
 
 #include <algorithm>
@@ -9,9 +11,6 @@
 #include <string>
 
 namespace stochtex {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 GradientStatistics gradient_statistics(const std::vector<float>& plane, int width, int height, int orientation_bins) {
     if (width < 3 || height < 3 || plane.size() != std::size_t(width) * height)

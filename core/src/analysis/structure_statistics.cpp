@@ -2,6 +2,7 @@
 
 #include "spectra/fft.h"
 #include "spectra/steerable_pyramid.h"
+#include "numerics/constants.h"
 
 #include <stochtex/error.h>
 
@@ -175,7 +176,7 @@ StructureStatistics structure_statistics(const Image& input) {
             for (double v : a) sum += v, sum_squares += v * v;
             const double n = double(a.size());
             writer(kMarginals, level_pixels)
-                .push_back(sum_squares > 0 ? std::log(sum / n / std::sqrt(sum_squares / n) / (std::sqrt(M_PI) / 2)) : 0);
+                .push_back(sum_squares > 0 ? std::log(sum / n / std::sqrt(sum_squares / n) / (std::sqrt(kPi) / 2)) : 0);
             remove_mean(a);
             add_autocorrelation(a, level.width, level.height, writer(kAutocorrelation, level_pixels));
             amplitudes.push_back(std::move(a));

@@ -1,5 +1,7 @@
 #include "colour/gaussian.h"
 
+#include "numerics/constants.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -37,7 +39,7 @@ double inverse_normal_cdf(double p)
     }
     // One Halley step takes the 1e-9 approximation to full double precision.
     const double e = normal_cdf(x) - p;
-    const double u = e * std::sqrt(2 * M_PI) * std::exp(0.5 * x * x);
+    const double u = e * std::sqrt(2 * kPi) * std::exp(0.5 * x * x);
     return x - u / (1 + 0.5 * x * u);
 }
 

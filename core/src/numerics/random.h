@@ -3,6 +3,8 @@
 // sequence is a pure function of its seed, so textures are reproducible everywhere.
 #pragma once
 
+#include "numerics/constants.h"
+
 #include <cmath>
 #include <cstdint>
 
@@ -26,7 +28,7 @@ public:
     {
         const double u1 = 1.0 - uniform();  // (0, 1]: log is finite
         const double u2 = uniform();
-        return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+        return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
     }
 
 private:

@@ -1,5 +1,7 @@
 #include "spectra/fft.h"
 
+#include "numerics/constants.h"
+
 #include <stochtex/error.h>
 
 #include <fftw3.h>
@@ -66,7 +68,7 @@ std::vector<std::complex<float>> periodic_component_fft_2d(const std::vector<flo
     for (int ky = 0; ky < height; ++ky)
         for (int kx = 0; kx < half_width; ++kx) {
             if (kx == 0 && ky == 0) continue;
-            const double denominator = 2 * std::cos(2 * M_PI * kx / width) + 2 * std::cos(2 * M_PI * ky / height) - 4;
+            const double denominator = 2 * std::cos(2 * kPi * kx / width) + 2 * std::cos(2 * kPi * ky / height) - 4;
             const std::size_t i = std::size_t(ky) * half_width + kx;
             spectrum[i] -= boundary_spectrum[i] / float(denominator);
         }

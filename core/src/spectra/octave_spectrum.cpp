@@ -3,6 +3,7 @@
 #include <stochtex/error.h>
 
 #include "numerics/nonnegative_least_squares.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,7 @@ OctaveSpectrum octave_spectrum(const RadialPsd& psd, double samples_per_unit)
     for (std::size_t i = 0; i < psd.frequency.size(); ++i) {
         const double f = psd.frequency[i];
         spectrum.log2_frequency.push_back(std::log2(f * samples_per_unit));
-        spectrum.variance_per_octave.push_back(2 * M_PI * f * f * std::log(2.0) * psd.power[i]);
+        spectrum.variance_per_octave.push_back(2 * kPi * f * f * std::log(2.0) * psd.power[i]);
     }
     return spectrum;
 }

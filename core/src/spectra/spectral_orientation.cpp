@@ -1,7 +1,9 @@
+#include "spectra/spectral_orientation.h"
+
 #include <stochtex/error.h>
-#include <stochtex/metrics.h>
 
 #include "spectra/fft.h"
+#include "numerics/constants.h"
 
 #include <cmath>
 #include <complex>
@@ -34,7 +36,7 @@ SpectralOrientation spectral_orientation(const std::vector<float>& plane, int wi
     SpectralOrientation result;
     if (total > 0) {
         result.strength = std::abs(moment) / total;
-        result.angle_degrees = std::arg(moment) / 2 * 180 / M_PI;
+        result.angle_degrees = std::arg(moment) / 2 * 180 / kPi;
     }
     return result;
 }

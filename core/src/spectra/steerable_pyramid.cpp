@@ -1,6 +1,7 @@
 #include "spectra/steerable_pyramid.h"
 
 #include "spectra/fft.h"
+#include "numerics/constants.h"
 
 #include <stochtex/error.h>
 
@@ -10,8 +11,6 @@
 namespace stochtex {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The log-radial masks of Portilla & Simoncelli's code, with ω in radians per sample (π at
 // Nyquist): the high mask rises from 0 at ω = π/4 to 1 at ω = π/2 as a raised cosine in log2 ω,

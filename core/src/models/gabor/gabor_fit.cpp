@@ -1,6 +1,8 @@
 #include "models/gabor/gabor_fit.h"
 
 #include "models/gabor/gabor_statistics.h"
+#include "numerics/constants.h"
+#include "spectra/power_spectrum.h"
 
 #include <stochtex/error.h>
 #include <stochtex/metrics.h>
@@ -44,7 +46,7 @@ OctaveSpectrum sampled_octave_spectrum(const GaborNoiseParameters& octave)
     for (double l = -14; l <= 3 + 1e-9; l += 1.0 / 16) {
         const double rho = std::exp2(l);
         spectrum.log2_frequency.push_back(l);
-        spectrum.variance_per_octave.push_back(2 * M_PI * rho * rho * std::log(2.0) * gabor_slice_radial_psd(octave, rho));
+        spectrum.variance_per_octave.push_back(2 * kPi * rho * rho * std::log(2.0) * gabor_slice_radial_psd(octave, rho));
     }
     return spectrum;
 }
@@ -98,13 +100,13 @@ SpectralAxes spectral_axes(const std::array<std::vector<float>, 3>& channels, in
 /// divided by to give the oriented fraction. Scale-free, so F = 1.
 double oriented_moment_length(double bandwidth)
 {
-    const double k = 2 * M_PI / (bandwidth * bandwidth);
+    const double k = 2 * kPi / (bandwidth * bandwidth);
     double sum = 0, moment = 0;
     constexpr int radii = 64, angles = 180;
     for (int i = 0; i < radii; ++i) {
         const double rho = std::exp2(-0.5 + (i + 0.5) / radii);
         for (int j = 0; j < angles; ++j) {
-            const double phi = M_PI * ((j + 0.5) / angles - 0.5);
+            const double phi = kPi * ((j + 0.5) / angles - 0.5);
             const double x = rho * std::cos(phi), y = rho * std::sin(phi);
             const double power = std::exp(-k * ((x - 1) * (x - 1) + y * y)) + std::exp(-k * ((x + 1) * (x + 1) + y * y));
             sum += power * rho * rho;  // dA = ρ dρ dφ, and dρ ∝ ρ on the log grid
@@ -137,7 +139,7 @@ std::vector<OctaveOrientation> octave_orientations(const std::vector<PolarPsd>& 
                     // Power in the cell: the mean density times its samples (of equal area).
                     const double power = spectrum.power[cell] * spectrum.samples[cell];
                     // polar_psd's θ turns from x towards y up; v grows down the photo's rows.
-                    const double theta = -M_PI * a / angles;
+                    const double theta = -kPi * a / angles;
                     sum += power, re += power * std::cos(2 * theta), im += power * std::sin(2 * theta);
                     channel_samples += spectrum.samples[cell];
                 }
@@ -147,7 +149,7 @@ std::vector<OctaveOrientation> octave_orientations(const std::vector<PolarPsd>& 
         if (!(sum > 0) || !(samples > 0)) continue;
         const double length2 = (re * re + im * im) / (sum * sum) - moment_noise_samples / samples;
         const double fraction = length2 > 0 && full > 0 ? std::min(1.0, std::sqrt(length2) / full) : 0.0;
-        result[k].degrees = 0.5 * std::atan2(im, re) * 180 / M_PI;
+        result[k].degrees = 0.5 * std::atan2(im, re) * 180 / kPi;
         result[k].fraction = fraction >= min_oriented_fraction ? fraction : 0.0;
     }
     return result;
@@ -229,7 +231,7 @@ GaborParameters fit_gabor_octaves(const std::array<std::vector<float>, 3>& chann
         // One anisotropic octave's spectrum has second moments F²(1 + β²/4π) along ω and F²β²/4π
         // across, whatever the weights: match the photo's ratio.
         const double ratio = std::min(axes.minor_to_major, 0.99);
-        bandwidths = {std::clamp(std::sqrt(4 * M_PI * ratio / (1 - ratio)), min_anisotropic_bandwidth,
+        bandwidths = {std::clamp(std::sqrt(4 * kPi * ratio / (1 - ratio)), min_anisotropic_bandwidth,
                                  max_anisotropic_bandwidth)};
     }
     if (options.bandwidth > 0) bandwidths = {options.bandwidth};

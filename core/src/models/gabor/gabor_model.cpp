@@ -7,6 +7,7 @@
 #include "models/gabor/gabor_texture.h"
 #include "models/info_text.h"
 #include "models/model.h"
+#include "numerics/constants.h"
 
 #include <stochtex/models/gabor_parameters.h>
 
@@ -313,12 +314,12 @@ public:
             for (std::size_t k = 0; k < count; ++k) {
                 const double pa = k < a.frequencies.size() ? a.oriented_fractions[k] : 0.0;
                 const double pb = k < b.frequencies.size() ? b.oriented_fractions[k] : 0.0;
-                const double ta = (k < a.frequencies.size() ? a.orientations[k] : b.orientations[k]) * M_PI / 90;
-                const double tb = (k < b.frequencies.size() ? b.orientations[k] : a.orientations[k]) * M_PI / 90;
+                const double ta = (k < a.frequencies.size() ? a.orientations[k] : b.orientations[k]) * kPi / 90;
+                const double tb = (k < b.frequencies.size() ? b.orientations[k] : a.orientations[k]) * kPi / 90;
                 const double x = lerp((pa + 1e-9) * std::cos(ta), (pb + 1e-9) * std::cos(tb), t);
                 const double y = lerp((pa + 1e-9) * std::sin(ta), (pb + 1e-9) * std::sin(tb), t);
                 result.oriented_fractions[k] = lerp(pa, pb, t);
-                result.orientations[k] = std::atan2(y, x) * 90 / M_PI;
+                result.orientations[k] = std::atan2(y, x) * 90 / kPi;
             }
         }
         for (int c = 0; c < 3; ++c) {

@@ -2,6 +2,7 @@
 #include <stochtex/models/gabor_parameters.h>
 
 #include "models/gabor/gabor_raster_kernels.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,14 +27,14 @@ struct PhaseTable {
     PhaseTable()
     {
         for (int k = 0; k < phase_count; ++k) {
-            cosine[k] = float(std::cos(2 * M_PI * k / phase_count));
-            sine[k] = float(std::sin(2 * M_PI * k / phase_count));
+            cosine[k] = float(std::cos(2 * kPi * k / phase_count));
+            sine[k] = float(std::sin(2 * kPi * k / phase_count));
         }
     }
 };
 const PhaseTable phase_table;
 
-double phase_angle(int index) { return 2 * M_PI * index / phase_count; }
+double phase_angle(int index) { return 2 * kPi * index / phase_count; }
 
 /// SplitMix64's output function: a strong 64-bit mixer (Steele et al. 2014).
 inline std::uint64_t mix64(std::uint64_t z)
@@ -61,7 +62,7 @@ inline std::int64_t floor_index(double x)
 /// P(χ² with 3 degrees of freedom ≤ x): the energy fraction of a 3D Gaussian inside a sphere.
 double chi_square_3_cdf(double x)
 {
-    return std::erf(std::sqrt(x / 2)) - std::sqrt(2 * x / M_PI) * std::exp(-x / 2);
+    return std::erf(std::sqrt(x / 2)) - std::sqrt(2 * x / kPi) * std::exp(-x / 2);
 }
 
 }  // namespace
@@ -97,8 +98,8 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     key_2d_ = mix64(parameters.seed ^ 0x2d2d2d2d2d2d2d2dull);
     key_3d_ = mix64(parameters.seed ^ 0x3d3d3d3d3d3d3d3dull);
     // One impulse per cell: the cell's area (volume) is that of the support disc (ball) over N.
-    cell_x_ = cell_y_ = radius_ * std::sqrt(M_PI / n);
-    cell_3d_ = radius_ * std::cbrt(4 * M_PI / (3 * n));
+    cell_x_ = cell_y_ = radius_ * std::sqrt(kPi / n);
+    cell_3d_ = radius_ * std::cbrt(4 * kPi / (3 * n));
     const bool periodic = parameters.period[0] > 0 && parameters.period[1] > 0;
     if (periodic) {
         if (!(parameters.period[0] >= 2 * radius_ && parameters.period[1] >= 2 * radius_))
@@ -115,7 +116,7 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     // integral is (2a²)^(-n/2) times the Gaussian's energy fraction inside the support: 1 − cutoff²
     // in 2D, a χ²₃ probability in 3D.
     const double energy_2d = 1 - envelope_cutoff * envelope_cutoff;
-    const double energy_3d = chi_square_3_cdf(4 * M_PI * a * a * radius_ * radius_);
+    const double energy_3d = chi_square_3_cdf(4 * kPi * a * a * radius_ * radius_);
     gain_2d_ = 1 / std::sqrt(density_2d * 0.5 / (2 * a * a) * energy_2d);
     gain_3d_ = 1 / std::sqrt(density_3d * 0.5 * std::pow(2 * a * a, -1.5) * energy_3d);
 
@@ -130,7 +131,7 @@ GaborNoise::GaborNoise(const GaborNoiseParameters& parameters) : parameters_(par
     }
 }
 
-double GaborNoise::support_radius(double bandwidth) { return std::sqrt(-std::log(envelope_cutoff) / M_PI) / bandwidth; }
+double GaborNoise::support_radius(double bandwidth) { return std::sqrt(-std::log(envelope_cutoff) / kPi) / bandwidth; }
 
 std::uint64_t GaborNoise::cell_key_2d(std::int64_t i, std::int64_t j) const
 {
@@ -290,6 +291,25 @@ void set_phases(gabor_raster::CellImpulses& cells, std::size_t m, std::uint64_t 
     }
 }
 
+/// The support's matrix of a slice with the frame (t, b, n): M = n nᵀ + T A⁻¹ Tᵀ, the ellipsoid
+/// h² + pᵀA⁻¹p ≤ r² (thickness r along n: slicing does not widen kernels, filtering widens them
+/// in the plane), with its Schur complement's smallest eigenvalue for row_span_3d.
+Ellipsoid sliced_support(const TangentFrame& frame, const Symmetric2& inverse)
+{
+    const Vec3 &t = frame.t, &b = frame.b, &n = frame.n;
+    Ellipsoid support{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            support.m[i][j] = n[i] * n[j] + inverse.xx * t[i] * t[j] + inverse.xy * (t[i] * b[j] + b[i] * t[j]) +
+                              inverse.yy * b[i] * b[j];
+    const double (&m)[3][3] = support.m;
+    support.schur_min = Symmetric2{m[1][1] - m[0][1] * m[0][1] / m[0][0], m[1][2] - m[0][1] * m[0][2] / m[0][0],
+                                   m[2][2] - m[0][2] * m[0][2] / m[0][0]}
+                            .smallest_eigenvalue();
+    support.prepare();
+    return support;
+}
+
 }  // namespace
 
 void GaborNoise::eval_2d(double x, double y, const GaborFilter& filter, float out[max_channels]) const
@@ -317,189 +337,252 @@ void GaborNoise::eval_sliced_grid(const double* x, std::size_t nx, const double*
     eval_grid<true>(x, nx, y, ny, z, frame, filter, out);
 }
 
+/// One eval_grid call, in steps: which cells a block of points needs (gather_block), each
+/// cell's impulse prepared for the filter (set_impulse), and the sums, row by row of points
+/// (sum_block_rows) or for a single point over only the cells that can reach it
+/// (sum_single_point). What the steps share is fixed by the constructor.
 template <bool Solid>
-void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
-                           const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const
-{
-    const double a = parameters_.bandwidth, pi_a2 = M_PI * a * a;
-    const double reach = radius_ * span_margin, reach2 = reach * reach;
-    const Symmetric2& inverse = filter.inverse_a;
-    const Symmetric2& damping = filter.damping;
-    const Vec3 &t = frame.t, &b = frame.b, &n = frame.n;
-    const bool fixed = parameters_.kind == GaborKind::anisotropic;
+class GaborNoise::GridEvaluation {
+public:
+    GridEvaluation(const GaborNoise& noise, const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
+                   const TangentFrame& frame, const GaborFilter& filter);
+    void run(float* const out[max_channels]);
 
-    gabor_raster::RowInput input;
-    input.envelope = envelope_of(inverse, pi_a2, radius_ * radius_, Solid ? &frame : nullptr);
-    input.gain = (Solid ? gain_3d_ : gain_2d_) * filter.amplitude;
-    input.channels = parameters_.channels;
-    input.solid = Solid;
-    input.z = z;
-    const double sx = Solid ? cell_3d_ : cell_x_, sy = Solid ? cell_3d_ : cell_y_, sz = cell_3d_;
-    input.cell_x = sx;
-    const double inverse_sx = 1 / sx;  // cells of a span: its ends times this (see Ellipsoid)
+private:
+    bool row_span(std::int64_t j, std::int64_t k, double y_lo, double y_hi, RowSpan& span) const;
+    void test_cell_2d(std::int64_t i, std::int64_t j);
+    void set_impulse(std::size_t m, std::uint64_t key, double cx, double cy, double cz);
+    void set_cell(std::size_t m, std::int64_t i, std::int64_t j, std::int64_t k);
+    void gather_block(double x_lo, double x_hi, double y_lo, double y_hi);
+    void sum_single_point(float* const out[max_channels]);
+    void sum_block_rows(std::size_t by, std::size_t rows_here, std::size_t bx, std::size_t columns,
+                        float* const out[max_channels]);
 
-    // The support: 2D the ellipse dᵀA⁻¹d ≤ r²; sliced the ellipsoid h² + pᵀA⁻¹p ≤ r² (thickness r
-    // along n: slicing does not widen kernels, filtering widens them in the plane), whose extent
-    // along texture axis e is r·√((M⁻¹)_ee), M⁻¹ = n nᵀ + T A Tᵀ.
-    Ellipsoid support{};
-    double extent_y = reach * std::sqrt(filter.matrix.yy), extent_z = 0;
-    if (Solid) {
-        extent_y = reach * std::sqrt(n[1] * n[1] + filter.matrix.quadratic_form(t[1], b[1]));
-        extent_z = reach * std::sqrt(n[2] * n[2] + filter.matrix.quadratic_form(t[2], b[2]));
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                support.m[i][j] = n[i] * n[j] + inverse.xx * t[i] * t[j] + inverse.xy * (t[i] * b[j] + b[i] * t[j]) +
-                                  inverse.yy * b[i] * b[j];
-        const double (&m)[3][3] = support.m;
-        support.schur_min = Symmetric2{m[1][1] - m[0][1] * m[0][1] / m[0][0], m[1][2] - m[0][1] * m[0][2] / m[0][0],
-                                       m[2][2] - m[0][2] * m[0][2] / m[0][0]}
-                                .smallest_eigenvalue();
-        support.prepare();
-    }
-    // The span along x of the support over the row of cells (j, k), for points with y in
-    // [y_lo, y_hi] (and the grid's z).
-    auto row_span = [&](std::int64_t j, std::int64_t k, double y_lo, double y_hi, RowSpan& span) {
-        const double y0 = j * sy - y_hi, y1 = j * sy + sy - y_lo;
-        if (!Solid) return row_span_2d(inverse, reach2, y0, y1, span);
-        const double z0 = k * sz - z;
-        return row_span_3d(support, reach2, y0, y1, z0, z0 + sz, span);
-    };
-
-    // One impulse of cell (i, j[, k]) into the cache, prepared for this filter (and frame).
-    gabor_raster::CellImpulses& cells = grid_scratch().cells;
+    const GaborNoise& noise_;
+    const double *x_, *y_;
+    std::size_t nx_, ny_;
+    double z_;
+    const TangentFrame& frame_;
+    const Symmetric2& inverse_;
+    const Symmetric2& damping_;
+    const double reach_, reach2_;  // the support's radius with its margin, and its square
+    const bool fixed_;
+    const double sx_, sy_, sz_, inverse_sx_;  // cell sides; cells of a span: its ends times inverse_sx_ (see Ellipsoid)
+    Ellipsoid support_{};                     // solid: the support (sliced_support)
+    double extent_y_, extent_z_ = 0;          // the support's half-extents along y and z
+    gabor_raster::RowInput input_;
+    GridScratch& scratch_;
     // A single point (eval(), eval_sliced()) keeps only the cells whose kernel can reach it: q in
     // double with the span's margin, a superset of what the kernel's float test keeps, so the
     // sum is the same as in any grid. Candidates are stored unconditionally and counted only when
     // kept (most are rejected: a mispredicted branch each would cost more than the test).
-    const bool single = nx == 1 && ny == 1;
-    GridScratch& candidates = grid_scratch();
-    std::size_t kept = 0;
-    // 2D: tested here; solid: rows collected, tested together by vectors of cells
-    // (gabor_raster::test_candidates: the same operations, lane-wise).
-    auto test_cell_2d = [&](std::int64_t i, std::int64_t j) {
-        const std::uint64_t key = cell_key_2d(i, j), bits = mix64(key);
-        const double cx = i * sx + position_fraction(bits) * sx, cy = j * sy + position_fraction(bits >> 21) * sy;
-        const double q = inverse.quadratic_form(x[0] - cx, y[0] - cy);
-        candidates.key[kept] = key;
-        candidates.cx[kept] = cx, candidates.cy[kept] = cy, candidates.cz[kept] = 0.0;
-        kept += q <= reach2;
-    };
-    std::size_t candidate_count = 0;
-    if (single) candidates.candidate_rows.clear();
-    // One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
-    // Written at index m of cells already sized (CellImpulses::resize): no growth checks per array.
-    auto set_impulse = [&](std::size_t m, std::uint64_t key, double cx, double cy, double cz) {
-        const std::uint64_t attributes = mix64(key + attribute_offset);
-        const Vec3 omega = fixed ? omega_ : frequency_of(key, attributes);
-        cells.x[m] = cx, cells.y[m] = cy, cells.z[m] = cz;
-        // In-plane frequency ω^s (2D: the projected one), filtered: A⁻¹ω^s (eq. 10).
-        const double st = Solid ? dot3(t, omega) : omega[0], sb = Solid ? dot3(b, omega) : omega[1];
-        const double wx = inverse.xx * st + inverse.xy * sb, wy = inverse.xy * st + inverse.yy * sb;
-        if (Solid) {
-            // The phase 2π (A⁻¹ω^s·p + h n·ω) (eq. 6) as one frequency in texture axes.
-            const double wn = dot3(n, omega);
-            cells.wx[m] = float(wx * t[0] + wy * b[0] + wn * n[0]);
-            cells.wy[m] = float(wx * t[1] + wy * b[1] + wn * n[1]);
-            cells.wz[m] = float(wx * t[2] + wy * b[2] + wn * n[2]);
-        } else {
-            cells.wx[m] = float(wx), cells.wy[m] = float(wy), cells.wz[m] = 0.0f;
-        }
-        cells.log_amplitude[m] = float(-damping.quadratic_form(st, sb));
-        set_phases(cells, m, attributes);
-    };
-    auto set_cell = [&](std::size_t m, std::int64_t i, std::int64_t j, std::int64_t k) {
-        const std::uint64_t key = Solid ? cell_key_3d(i, j, k) : cell_key_2d(i, j);
-        const std::uint64_t bits = mix64(key);
-        set_impulse(m, key, i * sx + position_fraction(bits) * sx, j * sy + position_fraction(bits >> 21) * sy,
-                     Solid ? k * sz + position_fraction(bits >> 42) * sz : 0.0);
-    };
+    const bool single_;
+    std::size_t kept_ = 0, candidate_count_ = 0;
+};
 
-    for (std::size_t by = 0; by < ny; by += block_rows) {
-        const std::size_t rows_here = std::min(block_rows, ny - by);
-        const auto [y_lo_at, y_hi_at] = std::minmax_element(y + by, y + by + rows_here);
-        const double y_lo = *y_lo_at, y_hi = *y_hi_at;
-        for (std::size_t bx = 0; bx < nx; bx += block_columns) {
-            const std::size_t columns = std::min(block_columns, nx - bx);
-            const auto [x_lo_at, x_hi_at] = std::minmax_element(x + bx, x + bx + columns);
-            const double x_lo = *x_lo_at, x_hi = *x_hi_at;
-            // The block's cells: every row of cells its support reaches, each over the span
-            // that the block's points need.
-            GridScratch& scratch = grid_scratch();
-            cells.clear();
-            scratch.block_rows.clear(), scratch.row_j.clear(), scratch.row_k.clear();
-            std::int64_t k0 = 0, k1 = 0, j0, j1;
-            if (Solid) cell_span(z, extent_z, sz, k0, k1);
-            j0 = floor_index((y_lo - extent_y) / sy), j1 = floor_index((y_hi + extent_y) / sy);
-            for (std::int64_t k = k0; k <= k1; ++k)
-                for (std::int64_t j = j0; j <= j1; ++j) {
-                    RowSpan span;
-                    if (!row_span(j, k, y_lo, y_hi, span)) continue;
-                    const std::int64_t i0 = floor_index((x_lo + span.lo) * inverse_sx), i1 = floor_index((x_hi + span.hi) * inverse_sx);
-                    if (single) {  // one list of the kept cells, below
-                        candidate_count += std::size_t(i1 - i0 + 1);
-                        if (candidates.key.size() < candidate_count + 64) {  // (+ a vector: test_candidates)
-                            candidates.key.resize(2 * (candidate_count + 64));
-                            for (auto* v : {&candidates.cx, &candidates.cy, &candidates.cz}) v->resize(candidates.key.size());
-                        }
-                        if (Solid) candidates.candidate_rows.push_back({i0, i1, j, k});
-                        else for (std::int64_t i = i0; i <= i1; ++i) test_cell_2d(i, j);
-                        continue;
-                    }
-                    gabor_raster::CellRow row;
-                    row.first = std::uint32_t(cells.size());
-                    cells.resize(cells.size() + std::size_t(i1 - i0 + 1));
-                    for (std::int64_t i = i0; i <= i1; ++i) set_cell(row.first + std::size_t(i - i0), i, j, k);
-                    row.count = std::uint32_t(cells.size() - row.first);
-                    row.i_first = i0;
-                    scratch.block_rows.push_back(row);
-                    scratch.row_j.push_back(j), scratch.row_k.push_back(k);
+template <bool Solid>
+GaborNoise::GridEvaluation<Solid>::GridEvaluation(const GaborNoise& noise, const double* x, std::size_t nx, const double* y,
+                                                  std::size_t ny, double z, const TangentFrame& frame,
+                                                  const GaborFilter& filter)
+    : noise_(noise), x_(x), y_(y), nx_(nx), ny_(ny), z_(z), frame_(frame), inverse_(filter.inverse_a),
+      damping_(filter.damping), reach_(noise.radius_ * span_margin), reach2_(reach_ * reach_),
+      fixed_(noise.parameters_.kind == GaborKind::anisotropic), sx_(Solid ? noise.cell_3d_ : noise.cell_x_),
+      sy_(Solid ? noise.cell_3d_ : noise.cell_y_), sz_(noise.cell_3d_), inverse_sx_(1 / sx_), scratch_(grid_scratch()),
+      single_(nx == 1 && ny == 1)
+{
+    const double a = noise.parameters_.bandwidth, pi_a2 = kPi * a * a;
+    const double reach = reach_;
+    input_.envelope = envelope_of(inverse_, pi_a2, noise.radius_ * noise.radius_, Solid ? &frame : nullptr);
+    input_.gain = (Solid ? noise.gain_3d_ : noise.gain_2d_) * filter.amplitude;
+    input_.channels = noise.parameters_.channels;
+    input_.solid = Solid;
+    input_.z = z;
+    input_.cell_x = sx_;
+    // The support: 2D the ellipse dᵀA⁻¹d ≤ r²; sliced the ellipsoid of sliced_support, whose
+    // extent along texture axis e is r·√((M⁻¹)_ee), M⁻¹ = n nᵀ + T A Tᵀ.
+    extent_y_ = reach * std::sqrt(filter.matrix.yy);
+    if (Solid) {
+        const Vec3 &t = frame.t, &b = frame.b, &n = frame.n;
+        extent_y_ = reach * std::sqrt(n[1] * n[1] + filter.matrix.quadratic_form(t[1], b[1]));
+        extent_z_ = reach * std::sqrt(n[2] * n[2] + filter.matrix.quadratic_form(t[2], b[2]));
+        support_ = sliced_support(frame, inverse_);
+    }
+    if (single_) scratch_.candidate_rows.clear();
+}
+
+/// The span along x of the support over the row of cells (j, k), for points with y in
+/// [y_lo, y_hi] (and the grid's z).
+template <bool Solid>
+bool GaborNoise::GridEvaluation<Solid>::row_span(std::int64_t j, std::int64_t k, double y_lo, double y_hi, RowSpan& span) const
+{
+    const double y0 = j * sy_ - y_hi, y1 = j * sy_ + sy_ - y_lo;
+    if (!Solid) return row_span_2d(inverse_, reach2_, y0, y1, span);
+    const double z0 = k * sz_ - z_;
+    return row_span_3d(support_, reach2_, y0, y1, z0, z0 + sz_, span);
+}
+
+/// A single 2D point's candidate cell (i, j), kept when its kernel can reach the point. (Solid
+/// points' rows are collected and tested together by vectors of cells, in sum_single_point:
+/// gabor_raster::test_candidates, the same operations lane-wise.)
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::test_cell_2d(std::int64_t i, std::int64_t j)
+{
+    const std::uint64_t key = noise_.cell_key_2d(i, j), bits = mix64(key);
+    const double cx = i * sx_ + position_fraction(bits) * sx_, cy = j * sy_ + position_fraction(bits >> 21) * sy_;
+    const double q = inverse_.quadratic_form(x_[0] - cx, y_[0] - cy);
+    scratch_.key[kept_] = key;
+    scratch_.cx[kept_] = cx, scratch_.cy[kept_] = cy, scratch_.cz[kept_] = 0.0;
+    kept_ += q <= reach2_;
+}
+
+/// One impulse of cell `key` at (cx, cy, cz) into the cache, prepared for this filter (and frame).
+/// Written at index m of cells already sized (CellImpulses::resize): no growth checks per array.
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::set_impulse(std::size_t m, std::uint64_t key, double cx, double cy, double cz)
+{
+    gabor_raster::CellImpulses& cells = scratch_.cells;
+    const Vec3 &t = frame_.t, &b = frame_.b, &n = frame_.n;
+    const std::uint64_t attributes = mix64(key + attribute_offset);
+    const Vec3 omega = fixed_ ? noise_.omega_ : noise_.frequency_of(key, attributes);
+    cells.x[m] = cx, cells.y[m] = cy, cells.z[m] = cz;
+    // In-plane frequency ω^s (2D: the projected one), filtered: A⁻¹ω^s (eq. 10).
+    const double st = Solid ? dot3(t, omega) : omega[0], sb = Solid ? dot3(b, omega) : omega[1];
+    const double wx = inverse_.xx * st + inverse_.xy * sb, wy = inverse_.xy * st + inverse_.yy * sb;
+    if (Solid) {
+        // The phase 2π (A⁻¹ω^s·p + h n·ω) (eq. 6) as one frequency in texture axes.
+        const double wn = dot3(n, omega);
+        cells.wx[m] = float(wx * t[0] + wy * b[0] + wn * n[0]);
+        cells.wy[m] = float(wx * t[1] + wy * b[1] + wn * n[1]);
+        cells.wz[m] = float(wx * t[2] + wy * b[2] + wn * n[2]);
+    } else {
+        cells.wx[m] = float(wx), cells.wy[m] = float(wy), cells.wz[m] = 0.0f;
+    }
+    cells.log_amplitude[m] = float(-damping_.quadratic_form(st, sb));
+    set_phases(cells, m, attributes);
+}
+
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::set_cell(std::size_t m, std::int64_t i, std::int64_t j, std::int64_t k)
+{
+    const std::uint64_t key = Solid ? noise_.cell_key_3d(i, j, k) : noise_.cell_key_2d(i, j);
+    const std::uint64_t bits = mix64(key);
+    set_impulse(m, key, i * sx_ + position_fraction(bits) * sx_, j * sy_ + position_fraction(bits >> 21) * sy_,
+                Solid ? k * sz_ + position_fraction(bits >> 42) * sz_ : 0.0);
+}
+
+/// The block's cells: every row of cells its support reaches, each over the span that the
+/// block's points need; a single point's candidates instead (kept or collected, see above).
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::gather_block(double x_lo, double x_hi, double y_lo, double y_hi)
+{
+    GridScratch& scratch = scratch_;
+    gabor_raster::CellImpulses& cells = scratch.cells;
+    cells.clear();
+    scratch.block_rows.clear(), scratch.row_j.clear(), scratch.row_k.clear();
+    std::int64_t k0 = 0, k1 = 0, j0, j1;
+    if (Solid) cell_span(z_, extent_z_, sz_, k0, k1);
+    j0 = floor_index((y_lo - extent_y_) / sy_), j1 = floor_index((y_hi + extent_y_) / sy_);
+    for (std::int64_t k = k0; k <= k1; ++k)
+        for (std::int64_t j = j0; j <= j1; ++j) {
+            RowSpan span;
+            if (!row_span(j, k, y_lo, y_hi, span)) continue;
+            const std::int64_t i0 = floor_index((x_lo + span.lo) * inverse_sx_), i1 = floor_index((x_hi + span.hi) * inverse_sx_);
+            if (single_) {  // one list of the kept cells: sum_single_point
+                candidate_count_ += std::size_t(i1 - i0 + 1);
+                if (scratch.key.size() < candidate_count_ + 64) {  // (+ a vector: test_candidates)
+                    scratch.key.resize(2 * (candidate_count_ + 64));
+                    for (auto* v : {&scratch.cx, &scratch.cy, &scratch.cz}) v->resize(scratch.key.size());
                 }
-            input.cells = &cells;
-            if (single) {
-                if (Solid) {
-                    // M = n nᵀ + T A⁻¹ Tᵀ, the support's matrix: dᵀMd = (n·d)² + (t·d, b·d) A⁻¹ (t·d, b·d)ᵀ
-                    // in half the operations. q only has to be right to far less than the margin:
-                    // kept octaves have det A ≤ 32², A⁻¹ a condition number ≤ 1024, q an error ~1e-13.
-                    gabor_raster::CandidateTest test{key_3d_, step_i, step_j, step_k, cell_3d_, {x[0], y[0], z}, {}, reach2};
-                    for (int r = 0; r < 3; ++r)
-                        for (int c = 0; c < 3; ++c) test.m[r][c] = support.m[r][c];
-                    kept = gabor_raster::test_candidates(test, candidates.candidate_rows.data(), candidates.candidate_rows.size(),
-                                                         candidates.key.data(), candidates.cx.data(), candidates.cy.data(),
-                                                         candidates.cz.data());
-                }
-                cells.resize(kept);
-                for (std::size_t m = 0; m < kept; ++m)
-                    set_impulse(m, candidates.key[m], candidates.cx[m], candidates.cy[m], candidates.cz[m]);
-                gabor_raster::CellRow every;
-                every.count = std::uint32_t(cells.size());
-                every.every_cell = true;
-                input.rows = &every;
-                input.row_count = 1;
-                input.y = y[0];
-                float* row_out[max_channels] = {};
-                for (int c = 0; c < parameters_.channels; ++c) row_out[c] = out[c];
-                gabor_raster::sum_row(input, x, 1, row_out);
-                return;
+                if (Solid) scratch.candidate_rows.push_back({i0, i1, j, k});
+                else for (std::int64_t i = i0; i <= i1; ++i) test_cell_2d(i, j);
+                continue;
             }
-            for (std::size_t py = by; py < by + rows_here; ++py) {
-                // This row of points' spans (narrower than the block's: fewer cells per vector).
-                scratch.rows.clear();
-                for (std::size_t r = 0; r < scratch.block_rows.size(); ++r) {
-                    RowSpan span;
-                    if (!row_span(scratch.row_j[r], scratch.row_k[r], y[py], y[py], span)) continue;
-                    gabor_raster::CellRow row = scratch.block_rows[r];
-                    row.lo = span.lo, row.hi = span.hi;
-                    scratch.rows.push_back(row);
-                }
-                input.rows = scratch.rows.data();
-                input.row_count = scratch.rows.size();
-                input.y = y[py];
-                float* row_out[max_channels] = {};
-                for (int c = 0; c < parameters_.channels; ++c) row_out[c] = out[c] + py * nx + bx;
-                gabor_raster::sum_row(input, x + bx, columns, row_out);
-            }
+            gabor_raster::CellRow row;
+            row.first = std::uint32_t(cells.size());
+            cells.resize(cells.size() + std::size_t(i1 - i0 + 1));
+            for (std::int64_t i = i0; i <= i1; ++i) set_cell(row.first + std::size_t(i - i0), i, j, k);
+            row.count = std::uint32_t(cells.size() - row.first);
+            row.i_first = i0;
+            scratch.block_rows.push_back(row);
+            scratch.row_j.push_back(j), scratch.row_k.push_back(k);
+        }
+}
+
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::sum_single_point(float* const out[max_channels])
+{
+    GridScratch& candidates = scratch_;
+    gabor_raster::CellImpulses& cells = scratch_.cells;
+    if (Solid) {
+        // M = n nᵀ + T A⁻¹ Tᵀ, the support's matrix: dᵀMd = (n·d)² + (t·d, b·d) A⁻¹ (t·d, b·d)ᵀ
+        // in half the operations. q only has to be right to far less than the margin:
+        // kept octaves have det A ≤ 32², A⁻¹ a condition number ≤ 1024, q an error ~1e-13.
+        gabor_raster::CandidateTest test{noise_.key_3d_, step_i, step_j, step_k, noise_.cell_3d_, {x_[0], y_[0], z_}, {}, reach2_};
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) test.m[r][c] = support_.m[r][c];
+        kept_ = gabor_raster::test_candidates(test, candidates.candidate_rows.data(), candidates.candidate_rows.size(),
+                                              candidates.key.data(), candidates.cx.data(), candidates.cy.data(),
+                                              candidates.cz.data());
+    }
+    cells.resize(kept_);
+    for (std::size_t m = 0; m < kept_; ++m) set_impulse(m, candidates.key[m], candidates.cx[m], candidates.cy[m], candidates.cz[m]);
+    gabor_raster::CellRow every;
+    every.count = std::uint32_t(cells.size());
+    every.every_cell = true;
+    input_.rows = &every;
+    input_.row_count = 1;
+    input_.y = y_[0];
+    float* row_out[max_channels] = {};
+    for (int c = 0; c < noise_.parameters_.channels; ++c) row_out[c] = out[c];
+    gabor_raster::sum_row(input_, x_, 1, row_out);
+}
+
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::sum_block_rows(std::size_t by, std::size_t rows_here, std::size_t bx,
+                                                       std::size_t columns, float* const out[max_channels])
+{
+    GridScratch& scratch = scratch_;
+    for (std::size_t py = by; py < by + rows_here; ++py) {
+        // This row of points' spans (narrower than the block's: fewer cells per vector).
+        scratch.rows.clear();
+        for (std::size_t r = 0; r < scratch.block_rows.size(); ++r) {
+            RowSpan span;
+            if (!row_span(scratch.row_j[r], scratch.row_k[r], y_[py], y_[py], span)) continue;
+            gabor_raster::CellRow row = scratch.block_rows[r];
+            row.lo = span.lo, row.hi = span.hi;
+            scratch.rows.push_back(row);
+        }
+        input_.rows = scratch.rows.data();
+        input_.row_count = scratch.rows.size();
+        input_.y = y_[py];
+        float* row_out[max_channels] = {};
+        for (int c = 0; c < noise_.parameters_.channels; ++c) row_out[c] = out[c] + py * nx_ + bx;
+        gabor_raster::sum_row(input_, x_ + bx, columns, row_out);
+    }
+}
+
+template <bool Solid>
+void GaborNoise::GridEvaluation<Solid>::run(float* const out[max_channels])
+{
+    for (std::size_t by = 0; by < ny_; by += block_rows) {
+        const std::size_t rows_here = std::min(block_rows, ny_ - by);
+        const auto [y_lo_at, y_hi_at] = std::minmax_element(y_ + by, y_ + by + rows_here);
+        for (std::size_t bx = 0; bx < nx_; bx += block_columns) {
+            const std::size_t columns = std::min(block_columns, nx_ - bx);
+            const auto [x_lo_at, x_hi_at] = std::minmax_element(x_ + bx, x_ + bx + columns);
+            gather_block(*x_lo_at, *x_hi_at, *y_lo_at, *y_hi_at);
+            input_.cells = &scratch_.cells;
+            if (single_) return sum_single_point(out);
+            sum_block_rows(by, rows_here, bx, columns, out);
         }
     }
+}
+
+template <bool Solid>
+void GaborNoise::eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z,
+                           const TangentFrame& frame, const GaborFilter& filter, float* const out[max_channels]) const
+{
+    GridEvaluation<Solid>(*this, x, nx, y, ny, z, frame, filter).run(out);
 }
 
 std::vector<GaborNoise::Impulse> GaborNoise::impulses_near_2d(double x, double y, double reach) const
@@ -549,8 +632,8 @@ double GaborNoise::reference_2d(double x, double y, int channel) const
         const double dx = x - impulse.position[0], dy = y - impulse.position[1];
         const double d2 = dx * dx + dy * dy;
         if (d2 > radius_ * radius_) continue;
-        sum += std::exp(-M_PI * a * a * d2) *
-               std::cos(2 * M_PI * (impulse.omega[0] * dx + impulse.omega[1] * dy) + impulse.phase[channel]);
+        sum += std::exp(-kPi * a * a * d2) *
+               std::cos(2 * kPi * (impulse.omega[0] * dx + impulse.omega[1] * dy) + impulse.phase[channel]);
     }
     return sum * gain_2d_;
 }
@@ -563,7 +646,7 @@ double GaborNoise::reference_3d(const Vec3& p, int channel) const
         const Vec3 d{p[0] - impulse.position[0], p[1] - impulse.position[1], p[2] - impulse.position[2]};
         const double d2 = dot3(d, d);
         if (d2 > radius_ * radius_) continue;
-        sum += std::exp(-M_PI * a * a * d2) * std::cos(2 * M_PI * dot3(impulse.omega, d) + impulse.phase[channel]);
+        sum += std::exp(-kPi * a * a * d2) * std::cos(2 * kPi * dot3(impulse.omega, d) + impulse.phase[channel]);
     }
     return sum * gain_3d_;
 }

@@ -115,6 +115,8 @@ public:
 
 private:
     template <bool Solid>
+    class GridEvaluation;  // eval_grid's steps (gabor_noise.cpp)
+    template <bool Solid>
     void eval_grid(const double* x, std::size_t nx, const double* y, std::size_t ny, double z, const TangentFrame& frame,
                    const GaborFilter& filter, float* const out[max_channels]) const;
 

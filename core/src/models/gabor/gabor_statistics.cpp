@@ -1,4 +1,6 @@
 #include "models/gabor/gabor_statistics.h"
+#include "numerics/constants.h"
+
 #include <stochtex/models/gabor_parameters.h>
 #include <stochtex/models/gabor_shader_data.h>
 
@@ -34,7 +36,7 @@ struct GaussLegendre {
     explicit GaussLegendre(int n)
     {
         for (int i = 0; i < n; ++i) {
-            double x = std::cos(M_PI * (i + 0.75) / (n + 0.5)), derivative = 1;
+            double x = std::cos(kPi * (i + 0.75) / (n + 0.5)), derivative = 1;
             for (int iteration = 0; iteration < 100; ++iteration) {
                 double p0 = 1, p1 = x;
                 for (int k = 2; k <= n; ++k) {
@@ -71,7 +73,7 @@ const GaussLegendre& legendre_8()
 /// the angle of f gives exp(−k(ρ² + f_s²)) I₀(2kρf_s), k = 2π/a².
 double ring_psd(double rho, double f_s, double a)
 {
-    const double k = 2 * M_PI / (a * a);
+    const double k = 2 * kPi / (a * a);
     return 2 * std::exp(-k * (rho - f_s) * (rho - f_s)) * scaled_bessel_i0(2 * k * rho * f_s) / (a * a);
 }
 
@@ -163,18 +165,18 @@ double gabor_correlation(const GaborNoiseParameters& noise, const Vec3& tau)
     if (noise.kind == GaborKind::oriented)
         return mixed(noise, [&](const GaborNoiseParameters& part) { return gabor_correlation(part, tau); });
     const double a = noise.bandwidth, f = noise.frequency;
-    const double envelope = std::exp(-M_PI * a * a * dot3(tau, tau) / 2);
+    const double envelope = std::exp(-kPi * a * a * dot3(tau, tau) / 2);
     switch (noise.kind) {
-    case GaborKind::anisotropic: return envelope * std::cos(2 * M_PI * f * dot3(noise.direction, tau));
+    case GaborKind::anisotropic: return envelope * std::cos(2 * kPi * f * dot3(noise.direction, tau));
     case GaborKind::hybrid: {
         const double along = dot3(noise.direction, tau);
         const double in_plane = std::sqrt(std::max(0.0, dot3(tau, tau) - along * along));
-        return envelope * std::cyl_bessel_j(0.0, 2 * M_PI * f * in_plane);
+        return envelope * std::cyl_bessel_j(0.0, 2 * kPi * f * in_plane);
     }
     case GaborKind::isotropic:
     case GaborKind::oriented: break;
     }
-    const double x = 2 * M_PI * f * std::sqrt(dot3(tau, tau));
+    const double x = 2 * kPi * f * std::sqrt(dot3(tau, tau));
     return envelope * (x < 1e-8 ? 1.0 : std::sin(x) / x);
 }
 
@@ -193,7 +195,7 @@ double gabor_slice_radial_psd(const GaborNoiseParameters& noise, double rho)
         constexpr int steps = 64;
         double sum = 0;
         for (int i = 0; i < steps; ++i) {
-            const double psi = M_PI * (i + 0.5) / steps, c = std::cos(psi), s = std::sin(psi);
+            const double psi = kPi * (i + 0.5) / steps, c = std::cos(psi), s = std::sin(psi);
             sum += ring_psd(rho, f * std::hypot(c * plane.t[0] + s * plane.b[0], c * plane.t[1] + s * plane.b[1]), a);
         }
         return sum / steps;

@@ -3,6 +3,7 @@
 
 #include "models/gabor/gabor_statistics.h"
 #include "numerics/random.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +61,7 @@ GaborNoiseParameters gabor_octave(const TextureDescription& description, std::si
     noise.bandwidth = gabor.bandwidth * gabor.frequencies[k];
     noise.direction = gabor.direction;
     if (gabor.kind == GaborKind::oriented) {
-        const double theta = gabor.orientations[k] * M_PI / 180;
+        const double theta = gabor.orientations[k] * kPi / 180;
         noise.direction = {std::cos(theta), std::sin(theta), 0};
         noise.oriented_fraction = gabor.oriented_fractions[k];
     }

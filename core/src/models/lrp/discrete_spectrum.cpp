@@ -1,6 +1,7 @@
 #include "models/lrp/discrete_spectrum.h"
 
 #include "spectra/fft.h"
+#include "numerics/constants.h"
 
 #include <stochtex/error.h>
 
@@ -46,7 +47,7 @@ DiscreteSpectrum welch_psd(const std::vector<float>& plane, int width, int heigh
     std::vector<double> taper(size);
     double taper_square_sum = 0;
     for (int i = 0; i < size; ++i) {
-        const double s = std::sin(M_PI * (i + 0.5) / size);
+        const double s = std::sin(kPi * (i + 0.5) / size);
         taper[i] = s * s;
     }
     for (int y = 0; y < size; ++y)

@@ -4,6 +4,7 @@
 
 #include "numerics/fast_math.h"
 #include "numerics/random.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,6 @@ namespace stochtex {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Share of the window's spectral energy whose radius stands for its spread in the fades.
 constexpr double spread_energy = 0.75;
 /// Responses below this are dropped (the rest rescaled so the response stays continuous).

@@ -270,6 +270,147 @@ double window_spacing(int size, int terms, std::size_t bins, double low_frequenc
     return std::clamp(std::max(coverage, resolving), 1.0, double(size));
 }
 
+/// The spectrum's half-plane representative bins (a bin whose index is not below its mirror's)
+/// with power, strongest first, without the weakest tail (left_out_tail of the energy).
+struct RankedBins {
+    std::vector<Bin> bins;
+    double total = 0;        ///< the energy of every bin, the tail's included
+    double kept_energy = 0;  ///< that of `bins`
+};
+
+RankedBins ranked_bins(const DiscreteSpectrum& partition, const std::vector<char>& excluded)
+{
+    const int size = partition.size;
+    RankedBins ranked;
+    std::vector<Bin>& bins = ranked.bins;
+    double& total = ranked.total;
+    for (int ky = -size / 2; ky < size / 2; ++ky)
+        for (int kx = -size / 2; kx < size / 2; ++kx) {
+            if (kx == 0 && ky == 0) continue;
+            const std::size_t i = partition.index(kx, ky), m = partition.index(mirror_bin(kx, size), mirror_bin(ky, size));
+            if (i < m || (!excluded.empty() && excluded[i])) continue;
+            const double multiplicity = i == m ? 1 : 2;
+            const double power = partition.power[i];
+            if (!(power > 0)) continue;
+            bins.push_back({kx, ky, power, multiplicity});
+            total += power * multiplicity;
+        }
+    if (!(total > 0)) return ranked;
+    std::sort(bins.begin(), bins.end(), [](const Bin& a, const Bin& b) { return a.power > b.power; });
+    double tail = 0;
+    while (!bins.empty() && tail + bins.back().power * bins.back().multiplicity <= left_out_tail * total) {
+        tail += bins.back().power * bins.back().multiplicity;
+        bins.pop_back();
+    }
+    ranked.kept_energy = total - tail;
+    return ranked;
+}
+
+/// Equal-energy strata over the sorted densities (§4.2): a bin goes where the middle of its
+/// energy falls, so a peak holding more than 1/L of the energy empties the next stratum. With
+/// `low_apart`, the lowest octave's bins keep their place in the split (the L strata keep their
+/// boundaries) but go to their own stratum (not returned). Empty strata are left out.
+std::vector<std::vector<const Bin*>> equal_energy_strata(const std::vector<Bin>& bins, double kept_energy,
+                                                         int equal_strata, bool low_apart)
+{
+    std::vector<std::vector<const Bin*>> members(static_cast<std::size_t>(equal_strata));
+    double cumulative = 0;
+    for (const Bin& bin : bins) {
+        const double energy = bin.power * bin.multiplicity;
+        const int s = std::min(equal_strata - 1, int(equal_strata * (cumulative + 0.5 * energy) / kept_energy));
+        if (!(low_apart && std::hypot(bin.kx, bin.ky) < lowest_octave_bins)) members[std::size_t(s)].push_back(&bin);
+        cumulative += energy;
+    }
+    members.erase(std::remove_if(members.begin(), members.end(), [](const auto& m) { return m.empty(); }), members.end());
+    return members;
+}
+
+/// A stratum's low frequency: the energy-weighted resolved_quantile of |f| (cycles per pixel).
+double low_frequency_of(const std::vector<const Bin*>& stratum, int size)
+{
+    std::vector<std::pair<double, double>> radius;  // |f|, energy
+    double energy = 0;
+    for (const Bin* bin : stratum) {
+        radius.emplace_back(std::hypot(bin->kx, bin->ky) / size, bin->power * bin->multiplicity);
+        energy += radius.back().second;
+    }
+    std::sort(radius.begin(), radius.end());
+    double below = 0;
+    for (const auto& [f, e] : radius)
+        if ((below += e) >= resolved_quantile * energy) return f;
+    return 0;
+}
+
+/// At most `count` bins of a substratum standing for it: all of them if there are no more,
+/// else the bins nearest the centres of a small k-means (spread out over the substratum).
+std::vector<Point> representatives_of(const std::vector<Point>& substratum, int count, SplitMix64& rng)
+{
+    if (substratum.size() <= std::size_t(count)) return substratum;
+    std::vector<Point> chosen;
+    const std::vector<std::size_t> part = kmeans(substratum, std::size_t(count), rng);
+    for (std::size_t r = 0; r < std::size_t(count); ++r) {
+        Point centre{0, 0, 0};
+        for (std::size_t i = 0; i < substratum.size(); ++i)
+            if (part[i] == r) {
+                const Point& p = substratum[i];
+                centre.x += p.weight * p.x, centre.y += p.weight * p.y, centre.weight += p.weight;
+            }
+        if (!(centre.weight > 0)) continue;
+        centre = {centre.x / centre.weight, centre.y / centre.weight};
+        chosen.push_back(substratum[nearest(substratum, centre)]);
+    }
+    return chosen;
+}
+
+/// Stratum s (its bins `stratum`, sampled by `terms` cosines; `lowest`: the lowest octave's)
+/// as stored: its σ per channel, window spacing and substrata of representative bins. Labels the
+/// stratum's bins (and mirrors) `label` in `labels`.
+LrpStratum sample_stratum(const std::vector<const Bin*>& stratum, int s, int terms, bool lowest,
+                          const DiscreteSpectrum& partition, const std::array<const DiscreteSpectrum*, 3>& channels,
+                          const LrpSamplingOptions& options, int label, std::vector<int>& labels)
+{
+    const int size = partition.size;
+    LrpStratum out;
+    std::vector<char> mask(partition.power.size(), 0);
+    for (const Bin* bin : stratum) {
+        const std::size_t i = partition.index(bin->kx, bin->ky);
+        mask[i] = mask[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] = 1;
+        labels[i] = labels[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] = label;
+        for (int c = 0; c < 3; ++c)
+            if (channels[c]) out.sigma[c] += channels[c]->power[i] * bin->multiplicity;
+    }
+    for (double& sigma : out.sigma) sigma = std::sqrt(sigma);
+    const double low_frequency = lowest ? low_frequency_of(stratum, size) : 0;
+
+    // Shrink (§4.3) so that the windows' spectra stay inside the stratum, then k-means.
+    const double erosion_radius = lrp_window_spread_1d(erosion_energy);  // cycles per spacing
+    const double spacing = window_spacing(size, terms, stratum.size(), low_frequency, options);
+    const std::vector<char> kept = erode(mask, size, erosion_radius * size / spacing);
+    std::vector<Point> points;
+    for (const Bin* bin : stratum)
+        if (kept[partition.index(bin->kx, bin->ky)])
+            // The row −T/2 is the aliased +T/2: placed there it neighbours its half-plane.
+            points.push_back({double(bin->kx), double(bin->ky == -size / 2 ? size / 2 : bin->ky),
+                              options.power_weighted ? bin->power : 1.0});
+    terms = std::min<int>(terms, int(points.size()));
+    out.spacing = window_spacing(size, terms, stratum.size(), low_frequency, options);
+    SplitMix64 rng(mix_seed(options.seed, std::uint64_t(s), 0x1a2b));
+    const std::vector<std::size_t> cluster = kmeans(points, std::size_t(terms), rng);
+    std::vector<std::vector<Point>> substrata(static_cast<std::size_t>(terms));
+    for (std::size_t i = 0; i < points.size(); ++i) substrata[cluster[i]].push_back(points[i]);
+    for (std::vector<Point>& substratum : substrata) {
+        if (substratum.empty()) continue;
+        std::vector<int> flat;
+        for (const Point& p : representatives_of(substratum, options.representatives, rng)) {
+            // Fold the row +T/2 back onto −T/2, its stored name.
+            flat.push_back(int(p.x));
+            flat.push_back(int(p.y) == size / 2 ? -size / 2 : int(p.y));
+        }
+        out.substrata.push_back(std::move(flat));
+    }
+    return out;
+}
+
 }  // namespace
 
 StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
@@ -282,30 +423,11 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
     for (const DiscreteSpectrum* channel : channels)
         if (channel && channel->size != size) throw Error("stratify_spectrum: channel spectra differ in size");
 
-    // Half-plane representatives: a bin whose index is not below its mirror's.
-    std::vector<Bin> bins;
-    double total = 0;
-    for (int ky = -size / 2; ky < size / 2; ++ky)
-        for (int kx = -size / 2; kx < size / 2; ++kx) {
-            if (kx == 0 && ky == 0) continue;
-            const std::size_t i = partition.index(kx, ky), m = partition.index(mirror_bin(kx, size), mirror_bin(ky, size));
-            if (i < m || (!excluded.empty() && excluded[i])) continue;
-            const double multiplicity = i == m ? 1 : 2;
-            const double power = partition.power[i];
-            if (!(power > 0)) continue;
-            bins.push_back({kx, ky, power, multiplicity});
-            total += power * multiplicity;
-        }
+    const RankedBins ranked = ranked_bins(partition, excluded);
     StratifiedSpectrum result;
     result.label.assign(partition.power.size(), -1);
-    if (!(total > 0)) return result;
-    std::sort(bins.begin(), bins.end(), [](const Bin& a, const Bin& b) { return a.power > b.power; });
-    double tail = 0;
-    while (!bins.empty() && tail + bins.back().power * bins.back().multiplicity <= left_out_tail * total) {
-        tail += bins.back().power * bins.back().multiplicity;
-        bins.pop_back();
-    }
-    const double kept_energy = total - tail;
+    if (!(ranked.total > 0)) return result;
+    const std::vector<Bin>& bins = ranked.bins;
 
     // The lowest octave (|k| < 2 bins) as a stratum of its own before the L (LrpSamplingOptions::
     // resolve): its window is as wide as those wavelengths need, its bins one cosine each. (Taking
@@ -320,20 +442,7 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
     // The file holds max_lrp_strata strata in all: with the lowest octave's, at most one fewer
     // of equal energy (L = 16 gives 15 and the lowest octave's).
     const int equal_strata = std::min(options.strata, max_lrp_strata - (low_terms > 0 ? 1 : 0));
-
-    // Equal-energy strata over the sorted densities (§4.2): a bin goes where the middle of its
-    // energy falls, so a peak holding more than 1/L of the energy empties the next stratum.
-    std::vector<std::vector<const Bin*>> members(static_cast<std::size_t>(equal_strata));
-    double cumulative = 0;
-    for (const Bin& bin : bins) {
-        // The lowest octave's bins keep their place in the split (the L strata keep their
-        // boundaries) but go to their own stratum.
-        const double energy = bin.power * bin.multiplicity;
-        const int s = std::min(equal_strata - 1, int(equal_strata * (cumulative + 0.5 * energy) / kept_energy));
-        if (!(low_terms > 0 && std::hypot(bin.kx, bin.ky) < lowest_octave_bins)) members[std::size_t(s)].push_back(&bin);
-        cumulative += energy;
-    }
-    members.erase(std::remove_if(members.begin(), members.end(), [](const auto& m) { return m.empty(); }), members.end());
+    std::vector<std::vector<const Bin*>> members = equal_energy_strata(bins, ranked.kept_energy, equal_strata, low_terms > 0);
     // Equal energy puts almost no stratum where a steep spectrum holds little energy over many
     // octaves: the weakest stratum then spans them all with one tiny window whose nearly white
     // spectrum the leakage solve cannot shape (sand dunes: 10–30 dB weak over the upper half of
@@ -342,88 +451,16 @@ StratifiedSpectrum stratify_spectrum(const DiscreteSpectrum& partition,
         split_wide_strata(members, size, options.octave_span, max_lrp_strata - (low_terms > 0 ? 1 : 0));
     if (low_terms > 0) members.insert(members.begin(), std::move(low));
 
+    // The cosines shared out: the lowest octave's first, the rest as evenly as they go.
     const int count = int(members.size());
     const int shared_count = count - (low_terms > 0 ? 1 : 0), shared_cosines = options.cosines - low_terms;
-    const double erosion_radius = lrp_window_spread_1d(erosion_energy);  // cycles per spacing
     for (int s = 0; s < count; ++s) {
-        const std::vector<const Bin*>& stratum = members[std::size_t(s)];
         const bool lowest = low_terms > 0 && s == 0;
         const int k = s - (low_terms > 0 ? 1 : 0);
-        int terms = lowest ? low_terms : shared_cosines / shared_count + (k < shared_cosines % shared_count ? 1 : 0);
+        const int terms = lowest ? low_terms : shared_cosines / shared_count + (k < shared_cosines % shared_count ? 1 : 0);
         if (terms < 1) continue;  // more strata than cosines: the weakest go unsampled
-        LrpStratum out;
-        std::vector<char> mask(partition.power.size(), 0);
-        for (const Bin* bin : stratum) {
-            const std::size_t i = partition.index(bin->kx, bin->ky);
-            mask[i] = mask[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] = 1;
-            result.label[i] = result.label[partition.index(mirror_bin(bin->kx, size), mirror_bin(bin->ky, size))] =
-                int(result.strata.size());
-            for (int c = 0; c < 3; ++c)
-                if (channels[c]) out.sigma[c] += channels[c]->power[i] * bin->multiplicity;
-        }
-        for (double& sigma : out.sigma) sigma = std::sqrt(sigma);
-        // The stratum's low frequency: the energy-weighted quantile of |f| (cycles per pixel).
-        double low_frequency = 0;
-        if (lowest) {
-            std::vector<std::pair<double, double>> radius;  // |f|, energy
-            double energy = 0;
-            for (const Bin* bin : stratum) {
-                radius.emplace_back(std::hypot(bin->kx, bin->ky) / size, bin->power * bin->multiplicity);
-                energy += radius.back().second;
-            }
-            std::sort(radius.begin(), radius.end());
-            double below = 0;
-            for (const auto& [f, e] : radius)
-                if ((below += e) >= resolved_quantile * energy) {
-                    low_frequency = f;
-                    break;
-                }
-        }
-
-        // Shrink (§4.3) so that the windows' spectra stay inside the stratum, then k-means.
-        const double spacing = window_spacing(size, terms, stratum.size(), low_frequency, options);
-        const std::vector<char> kept = erode(mask, size, erosion_radius * size / spacing);
-        std::vector<Point> points;
-        for (const Bin* bin : stratum)
-            if (kept[partition.index(bin->kx, bin->ky)])
-                // The row −T/2 is the aliased +T/2: placed there it neighbours its half-plane.
-                points.push_back({double(bin->kx), double(bin->ky == -size / 2 ? size / 2 : bin->ky),
-                                  options.power_weighted ? bin->power : 1.0});
-        terms = std::min<int>(terms, int(points.size()));
-        out.spacing = window_spacing(size, terms, stratum.size(), low_frequency, options);
-        SplitMix64 rng(mix_seed(options.seed, std::uint64_t(s), 0x1a2b));
-        const std::vector<std::size_t> cluster = kmeans(points, std::size_t(terms), rng);
-        std::vector<std::vector<Point>> substrata(static_cast<std::size_t>(terms));
-        for (std::size_t i = 0; i < points.size(); ++i) substrata[cluster[i]].push_back(points[i]);
-        for (std::vector<Point>& substratum : substrata) {
-            if (substratum.empty()) continue;
-            std::vector<Point> chosen;
-            if (substratum.size() <= std::size_t(options.representatives)) {
-                chosen = substratum;
-            } else {
-                // Spread-out representatives: centres of a small k-means, snapped to bins.
-                const std::vector<std::size_t> part = kmeans(substratum, std::size_t(options.representatives), rng);
-                for (std::size_t r = 0; r < std::size_t(options.representatives); ++r) {
-                    Point centre{0, 0, 0};
-                    for (std::size_t i = 0; i < substratum.size(); ++i)
-                        if (part[i] == r) {
-                            const Point& p = substratum[i];
-                            centre.x += p.weight * p.x, centre.y += p.weight * p.y, centre.weight += p.weight;
-                        }
-                    if (!(centre.weight > 0)) continue;
-                    centre = {centre.x / centre.weight, centre.y / centre.weight};
-                    chosen.push_back(substratum[nearest(substratum, centre)]);
-                }
-            }
-            std::vector<int> flat;
-            for (const Point& p : chosen) {
-                // Fold the row +T/2 back onto −T/2, its stored name.
-                flat.push_back(int(p.x));
-                flat.push_back(int(p.y) == size / 2 ? -size / 2 : int(p.y));
-            }
-            out.substrata.push_back(std::move(flat));
-        }
-        result.strata.push_back(std::move(out));
+        result.strata.push_back(sample_stratum(members[std::size_t(s)], s, terms, lowest, partition, channels, options,
+                                               int(result.strata.size()), result.label));
     }
     return result;
 }

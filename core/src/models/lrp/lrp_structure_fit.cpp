@@ -6,6 +6,7 @@
 #include "models/lrp/lrp_spectrum_sampling.h"
 #include "models/lrp/lrp_structure_noise.h"
 #include "schema/parameter_schema.h"
+#include "numerics/constants.h"
 
 #include <stochtex/error.h>
 #include <stochtex/models/lrp_parameters.h>
@@ -145,7 +146,7 @@ LrpStructure fit_blocks(const std::array<std::vector<float>, 3>& image, int size
                 if (!(bin.energy > 0)) break;
                 const std::size_t i = layout.index(bin.kx, bin.ky);
                 const bool paired = i != layout.index(mirror_bin(bin.kx, fit_size), mirror_bin(bin.ky, fit_size));
-                const double angle = 2 * M_PI * (bin.kx + bin.ky) * reference / fit_size;
+                const double angle = 2 * kPi * (bin.kx + bin.ky) * reference / fit_size;
                 const std::complex<double> turn(std::cos(angle), std::sin(angle));
                 out.frequencies.push_back(bin.kx);
                 out.frequencies.push_back(bin.ky);

@@ -22,6 +22,7 @@
 #pragma once
 
 #include "models/lrp/lrp_noise.h"
+#include "numerics/constants.h"
 
 #include <stochtex/texture_description.h>
 #include <stochtex/models/lrp_parameters.h>
@@ -148,9 +149,8 @@ std::array<double, 2> LrpStructureNoise::displacement(double x, double y, const 
 {
     if (!(turbulence_ > 0) || turbulence_strata_[0].empty()) return {0, 0};
     // Σ_S |n_S| of unit-variance, roughly Gaussian strata: mean n√(2/π), variance n(1 − 2/π).
-    constexpr double pi = 3.14159265358979323846;
     const double n = double(turbulence_strata_[0].size());
-    const double mean = n * std::sqrt(2 / pi), deviation = std::sqrt(n * (1 - 2 / pi));
+    const double mean = n * std::sqrt(2 / kPi), deviation = std::sqrt(n * (1 - 2 / kPi));
     std::array<double, 2> d{};
     for (int component = 0; component < 2; ++component) {
         double sum = 0;

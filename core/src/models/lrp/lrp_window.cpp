@@ -1,5 +1,7 @@
 #include "models/lrp/lrp_window.h"
 
+#include "numerics/constants.h"
+
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -9,7 +11,6 @@ namespace stochtex {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kaiser_alpha = 3 * kPi;
 
 /// Composite Simpson rule with `intervals` (even) intervals: f is called with the node index

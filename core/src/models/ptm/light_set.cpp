@@ -4,6 +4,7 @@
 #include <stochtex/models/ptm.h>
 
 #include "schema/json_fields.h"
+#include "numerics/constants.h"
 
 #include <algorithm>
 #include <charconv>
@@ -260,12 +261,12 @@ std::vector<Vec3> spiral_light_directions(int count, double min_elevation_degree
         throw Error("light directions: the minimum elevation must be in [0, 90) degrees");
     // z uniform on [sin(min elevation), 1] is uniform in solid angle; the golden angle between
     // consecutive azimuths spreads every prefix of the sequence evenly too.
-    const double z_min = std::sin(min_elevation_degrees * M_PI / 180);
-    const double golden_angle = M_PI * (3 - std::sqrt(5.0));
+    const double z_min = std::sin(min_elevation_degrees * kPi / 180);
+    const double golden_angle = kPi * (3 - std::sqrt(5.0));
     std::vector<Vec3> directions;
     for (int k = 0; k < count; ++k) {
         const double z = z_min + (1 - z_min) * (k + 0.5) / count;
-        const double phi = k * golden_angle + azimuth_offset_degrees * M_PI / 180;
+        const double phi = k * golden_angle + azimuth_offset_degrees * kPi / 180;
         const double r = std::sqrt(std::max(0.0, 1 - z * z));
         directions.push_back({r * std::cos(phi), r * std::sin(phi), z});
     }

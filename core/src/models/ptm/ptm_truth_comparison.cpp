@@ -4,6 +4,8 @@
 #include <stochtex/models/ptm.h>
 
 #include "models/ptm/ptm_functions.h"
+#include "numerics/constants.h"
+#include "spectra/spectral_orientation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -72,7 +74,7 @@ NormalErrors compare_normals(const Image& estimated, const Image& truth)
             const double a = estimated.pixels[i * 3 + c], b = truth.pixels[i * 3 + c];
             dot += a * b, length_a += a * a, length_b += b * b;
         }
-        angles[i] = std::acos(std::clamp(dot / std::sqrt(length_a * length_b), -1.0, 1.0)) * 180 / M_PI;
+        angles[i] = std::acos(std::clamp(dot / std::sqrt(length_a * length_b), -1.0, 1.0)) * 180 / kPi;
     }
     std::sort(angles.begin(), angles.end());
     NormalErrors errors;

@@ -3,6 +3,7 @@
 #include "models/wavelet/wavelet_noise.h"
 #include "spectra/band_power.h"
 #include "spectra/fft.h"
+#include "numerics/constants.h"
 
 #include <Eigen/Dense>
 
@@ -16,7 +17,7 @@ namespace stochtex {
 
 namespace {
 
-double sinc(double f) { return f == 0 ? 1.0 : std::sin(M_PI * f) / (M_PI * f); }
+double sinc(double f) { return f == 0 ? 1.0 : std::sin(kPi * f) / (kPi * f); }
 
 std::vector<std::vector<double>> compute_leakage(int band_count)
 {
