@@ -28,9 +28,11 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 p = d["parameters"]
 colour = d["colour"]["mode"] + ("+joint" if "chroma_given_brightness" in d["colour"] else "")
-gamma = p.get("blend_contrast", 1) if d["model"] == "tiling" else "–"
-exemplar = "%d×%d" % (p["exemplar"]["width"], p["exemplar"]["height"]) if d["model"] == "tiling" else "–"
-print("%s | %s | %g | %s" % (d["model"], colour, gamma, exemplar) if gamma != "–" else "%s | %s | – | –" % (d["model"], colour))
+# γ and the exemplar's size where the model has an exemplar to blend (its parameters say so).
+blended = isinstance(p.get("exemplar"), dict)
+gamma = p.get("blend_contrast", 1) if blended else None
+exemplar = "%d×%d" % (p["exemplar"]["width"], p["exemplar"]["height"]) if blended else "–"
+print("%s | %s | %s | %s" % (d["model"], colour, "–" if gamma is None else "%g" % gamma, exemplar))
 EOF
 }
 
