@@ -5,6 +5,7 @@
 
 #include "models/model.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -119,37 +120,46 @@ void validate_chroma_given_brightness(const TextureDescription& description, con
     }
 }
 
-ParameterSchema<ChromaGivenBrightness> make_chroma_given_brightness_fields()
+/// The two chroma channels' curves, one array per channel.
+void chroma_curves(ParameterSchema<ChromaGivenBrightness>& s, const char* key,
+                   std::array<std::vector<double>, 2> ChromaGivenBrightness::*member, const char* doc)
 {
-    // Documentation only: the curves are read, written and checked as one field of `colour`
-    // (their checks need the colour mode and the model), through read_chroma_given_brightness.
+    s.custom({key, "2 arrays of numbers", "", "", "", doc, {}, false},
+             [member](const Field& f, ChromaGivenBrightness& curves, const ReadContext&) {
+                 const std::vector<Field> channels = f.elements(2, "chroma channels");
+                 for (std::size_t c = 0; c < 2; ++c) (curves.*member)[c] = channels[c].numbers();
+             },
+             [member](const ChromaGivenBrightness& curves) { return Json{(curves.*member)[0], (curves.*member)[1]}; });
+}
+
+/// `colour.chroma_given_brightness`: read and written by this declaration; checked as a field of
+/// `colour` (validate_chroma_given_brightness: the checks need the colour mode and the model).
+ParameterSchema<ChromaGivenBrightness> make_chroma_given_brightness_block()
+{
     ParameterSchema<ChromaGivenBrightness> s;
     s.numbers("z", &ChromaGivenBrightness::z,
               {"", "", "Standard-normal units: 2 to 64 knots, uniformly spaced (to 1e-9), increasing."});
-    s.custom({"location", "2 arrays of numbers", "", "", "", "Channels 1 and 2: as many entries as z, finite.", {}, false}, {}, {});
-    s.custom({"scale", "2 arrays of numbers", "", "", "", "Channels 1 and 2: as many entries as z, each > 0.", {}, false}, {}, {});
+    chroma_curves(s, "location", &ChromaGivenBrightness::location, "Channels 1 and 2: as many entries as z, finite.");
+    chroma_curves(s, "scale", &ChromaGivenBrightness::scale, "Channels 1 and 2: as many entries as z, each > 0.");
     return s;
 }
 
-void read_chroma_given_brightness(const Field& joint, TextureDescription& description, const ReadContext&)
+const ParameterSchema<ChromaGivenBrightness>& chroma_given_brightness_block()
 {
-    joint.expect_keys({"z", "location", "scale"});
-    ChromaGivenBrightness& curves = description.chroma_given_brightness;
-    curves.z = joint["z"].numbers();
-    const std::vector<Field> location = joint["location"].elements(2, "chroma channels");
-    const std::vector<Field> scale = joint["scale"].elements(2, "chroma channels");
-    for (std::size_t c = 0; c < 2; ++c) curves.location[c] = location[c].numbers(), curves.scale[c] = scale[c].numbers();
-    if (!curves.enabled()) joint.fail("independent channels are written without chroma_given_brightness, not with empty knots");
+    static const ParameterSchema<ChromaGivenBrightness> block = make_chroma_given_brightness_block();
+    return block;
+}
+
+void read_chroma_given_brightness(const Field& joint, TextureDescription& description, const ReadContext& context)
+{
+    description.chroma_given_brightness = chroma_given_brightness_block().read(joint, context);
+    if (!description.chroma_given_brightness.enabled())
+        joint.fail("independent channels are written without chroma_given_brightness, not with empty knots");
 }
 
 Json write_chroma_given_brightness(const TextureDescription& description)
 {
-    const ChromaGivenBrightness& curves = description.chroma_given_brightness;
-    Json joint;
-    joint["z"] = curves.z;
-    joint["location"] = {curves.location[0], curves.location[1]};
-    joint["scale"] = {curves.scale[0], curves.scale[1]};
-    return joint;
+    return chroma_given_brightness_block().write(description.chroma_given_brightness);
 }
 
 ParameterSchema<TextureDescription> make_colour_block()
@@ -180,7 +190,7 @@ ParameterSchema<TextureDescription> make_colour_block()
                         "Joint colour (stex analyze --joint-colour on): y[c] = location[c−1](z₀) + scale[c−1](z₀) · r_c for the "
                         "chroma channels c = 1, 2, z₀ channel 0's standard-normal variate. Only in pca mode and for models that "
                         "declare joint colour. Absent: the three channels are independent.",
-                        make_chroma_given_brightness_fields().infos(), false};
+                        chroma_given_brightness_block().infos(), false};
     s.optional_custom(
         joint, [](const TextureDescription& d) { return d.chroma_given_brightness.enabled(); }, read_chroma_given_brightness,
         write_chroma_given_brightness, validate_chroma_given_brightness);
