@@ -296,7 +296,10 @@ int InfoCommand::run() const
 void CompareCommand::add_options(CLI::App& c)
 {
     c.add_option("photo", photo, "The photo")->required();
-    c.add_option("texture", texture, ".stex file")->required();
+    c.add_option("texture", texture,
+                 ".stex file, rendered at the photo's size; or an image (a host's render, an experiment's output), "
+                 "scored as it is")
+        ->required();
     c.add_option("-o,--output", output, "Side-by-side PNG: photo, synthesis, their PSDs and histograms");
     c.add_option("--colourspace,--colorspace", colour_space, "Colour space of the photo's values");
 }
@@ -310,17 +313,28 @@ int CompareCommand::run() const
     read_options.input_colour_space = colour_space;
     if (!output.empty()) check_image_output(output, "the figure");
     const Image photo_image = read_image_linear(photo, read_options);
-    const TextureDescription description = read_stex(texture);
-    const Image synthesis =
-        render_at_photo_scale(description, photo_image.width, photo_image.height, 0, terminal_progress_bar());
+    // An image is scored as it is (read with the photo's colour space); a .stex is rendered at
+    // the photo's pixel scale and size.
+    const bool is_stex = std::filesystem::path(texture).extension() == ".stex";
+    std::string label = std::filesystem::path(texture).filename().string();
+    Image synthesis;
+    if (is_stex) {
+        const TextureDescription description = read_stex(texture);
+        synthesis = render_at_photo_scale(description, photo_image.width, photo_image.height, 0, terminal_progress_bar());
+        label += " (" + description.model + ")";
+    } else {
+        synthesis = read_image_linear(texture, read_options);
+        if (synthesis.channels != photo_image.channels)
+            throw Error(texture + ": has " + std::to_string(synthesis.channels) + " channels, the photo " + photo +
+                        " has " + std::to_string(photo_image.channels));
+    }
     const ComparisonReport report = compare_images(photo_image, synthesis);
-    std::printf("%s vs %s (%dx%d, at the photo's pixel scale)\n%s", photo.c_str(), texture.c_str(), photo_image.width,
-                photo_image.height, format_report(report).c_str());
+    std::printf("%s vs %s (%dx%d%s)\n%s", photo.c_str(), texture.c_str(), synthesis.width, synthesis.height,
+                is_stex ? ", at the photo's pixel scale" : ", as it is", format_report(report).c_str());
     if (output.empty()) return 0;
 
     write_image(output, compare_figure(photo_image, synthesis, report, std::filesystem::path(photo).filename().string(),
-                                       std::filesystem::path(texture).filename().string() + " (" + description.model +
-                                           ")")
+                                       label)
                             .image);
     std::printf("wrote %s (photo and synthesis, radial power spectra, luma histograms, 2D luma power spectra, "
                 "structure distance)\n",
