@@ -9,6 +9,7 @@
 #include <stochtex/stex_file.h>
 #include <stochtex/texture.h>
 
+#include "analysis/model_choice.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
@@ -305,6 +306,45 @@ TEST(ModelChoice, ScoringStructureItTriesSharperTilingBlends)
     options.model_options = {{"blend-contrast", "2"}};
     for (const ModelScore& s : analyze(pebble_photo(256), options).provenance.model_choice)
         EXPECT_TRUE(s.variant.empty()) << s.model;
+}
+
+// The structure-weighing rule's guard, on scores made up to isolate it: a variant much closer in
+// structure wins only where it keeps the targets the default's choice keeps.
+TEST(ModelChoice, StructureDecidesOnlyAmongFitsNoWorseOnTheExistingTargets)
+{
+    FidelityTargets targets;
+    targets.structure_distance = 0.25;
+    const auto row = [](std::string variant, double penalty, double radial, double polar, double structure) {
+        ModelScore s;
+        s.model = "tiling";
+        s.colour = "rgb";
+        s.variant = std::move(variant);
+        s.penalty = penalty;
+        s.radial_log_psd_db = radial;
+        s.polar_log_psd_db = polar;
+        s.w1_sigma = 0.05;
+        s.false_colour_rate = 0.001;
+        s.gradient_orientation_degrees = 1;
+        s.gradient_magnitude_w1 = 0.05;
+        s.structure_distance = structure;
+        s.bytes = 1000;
+        return s;
+    };
+    // The default's choice (row 0, the only plain fit), and a variant with half its structure
+    // distance whose 2D distance is 20 % further (the seven-term penalty favours it).
+    std::vector<ModelScore> scores{row("", 0.9, 1.0, 1.0, 0.40), row("blend_contrast 8", 0.7, 1.0, 1.2, 0.20)};
+    const std::vector<double> six_term{0.5, 0.55};
+    EXPECT_EQ(chosen_by_rule(scores), 1u);  // the penalty alone would take it
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);
+    // Within 10 % of the closest 2D distance, it is the choice.
+    scores[1].polar_log_psd_db = 1.05;
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 1u);
+    // A radial spectrum pushed off its target (the default's is on it) rules it out again.
+    scores[1].radial_log_psd_db = 1.6;
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);
+    // Where the default's is off that target too, within the metrics' noise of it is allowed.
+    scores[0].radial_log_psd_db = 1.55;
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 1u);
 }
 
 // Issue 14's acceptance, on every shared photo (skipped without ../shared/exemplars): the model

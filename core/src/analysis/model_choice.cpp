@@ -171,40 +171,34 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
     return chosen;
 }
 
-namespace {
-
-/// The choice where structure is scored (--choice-structure): the default's choice first — the
-/// rule over the plain fits (no variant) by their six-term penalties, which is what the default
-/// keeps — then the rule by the seven-term penalty over that choice and every fit or variant
-/// that is no worse than it on the existing targets (no_worse_than). So structure decides only
-/// among textures that keep what the default's keeps.
-std::size_t chosen_weighing_structure(const std::vector<const Scored*>& fits, const FidelityTargets& targets)
+std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
+                                      const std::vector<double>& penalties_without_structure,
+                                      const FidelityTargets& targets)
 {
     std::vector<std::size_t> plain_rows;
     std::vector<ModelScore> plain_scores;
     double closest_2d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < fits.size(); ++i) {
-        const ModelScore& s = fits[i]->score;
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        const ModelScore& s = scores[i];
         if (s.w1_sigma <= targets.w1_sigma && s.false_colour_rate <= targets.false_colour_rate)
             closest_2d = std::min(closest_2d, s.polar_log_psd_db);
         if (!s.variant.empty()) continue;
         plain_rows.push_back(i);
         plain_scores.push_back(s);
-        plain_scores.back().penalty = fits[i]->penalty_without_structure;
+        plain_scores.back().penalty = penalties_without_structure[i];
     }
+    if (plain_rows.empty()) throw Error("auto: no candidate's own fit was scored");
     const std::size_t plain = plain_rows[chosen_by_rule(plain_scores)];
-    closest_2d = std::min(closest_2d, fits[plain]->score.polar_log_psd_db);
+    closest_2d = std::min(closest_2d, scores[plain].polar_log_psd_db);
     std::vector<std::size_t> rows;
     std::vector<ModelScore> allowed;
-    for (std::size_t i = 0; i < fits.size(); ++i)
-        if (i == plain || no_worse_than(fits[i]->score, fits[plain]->score, closest_2d, targets)) {
+    for (std::size_t i = 0; i < scores.size(); ++i)
+        if (i == plain || no_worse_than(scores[i], scores[plain], closest_2d, targets)) {
             rows.push_back(i);
-            allowed.push_back(fits[i]->score);
+            allowed.push_back(scores[i]);
         }
     return rows[chosen_by_rule(allowed)];
 }
-
-}  // namespace
 
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
                                           const ProgressCallback& progress)
@@ -301,16 +295,19 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     });
 
     std::vector<ModelScore> scores;
+    std::vector<double> penalties_without_structure;
     std::vector<const Scored*> fits;
     for (const Candidate& c : candidates)
         for (const Scored& fit : c.fits) {
             scores.push_back(fit.score);
+            penalties_without_structure.push_back(fit.penalty_without_structure);
             fits.push_back(&fit);
         }
 
-    TextureDescription result = fits[options.structure_in_choice ? chosen_weighing_structure(fits, targets)
-                                                                 : chosen_by_rule(scores)]
-                                    ->description;
+    TextureDescription result =
+        fits[options.structure_in_choice ? chosen_weighing_structure(scores, penalties_without_structure, targets)
+                                         : chosen_by_rule(scores)]
+            ->description;
     result.provenance.model_choice = scores;
     for (auto& [name, value] : result.provenance.options)
         if (name == "model") value = automatic_model;  // what was asked; description.model says what was chosen

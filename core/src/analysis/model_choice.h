@@ -29,6 +29,18 @@ ModelScore score_against_photo(const TextureDescription& description, const Comp
 /// (FitInput::choose).
 std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 
+/// The rule where structure is scored (`--choice-structure`; issue 33): first the default's
+/// choice, chosen_by_rule over the fits without a variant by `penalties_without_structure` (the
+/// six-term penalties, one per score); then chosen_by_rule, by the scores' own (seven-term)
+/// penalties, over that choice and every row no worse than it on the six existing targets —
+/// each metric on its target where the default's is, else within model_choice_tolerance of the
+/// default's, and the 2D distance within model_choice_tolerance of the closest candidate's
+/// among those on the W1 and false-colour targets (or no further than the default's). So the
+/// structure term decides only among textures that keep what the default's keeps.
+std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
+                                      const std::vector<double>& penalties_without_structure,
+                                      const FidelityTargets& targets);
+
 /// analyze() with options.model == automatic_model lands here.
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
                                           const ProgressCallback& progress);
