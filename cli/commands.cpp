@@ -323,10 +323,7 @@ int CompareCommand::run() const
         synthesis = render_at_photo_scale(description, photo_image.width, photo_image.height, 0, terminal_progress_bar());
         label += " (" + description.model + ")";
     } else {
-        synthesis = read_image_linear(texture, read_options);
-        if (synthesis.channels != photo_image.channels)
-            throw Error(texture + ": has " + std::to_string(synthesis.channels) + " channels, the photo " + photo +
-                        " has " + std::to_string(photo_image.channels));
+        synthesis = read_image_linear(texture, read_options);  // RGB, as the photo (grey is replicated)
     }
     const ComparisonReport report = compare_images(photo_image, synthesis);
     std::printf("%s vs %s (%dx%d%s)\n%s", photo.c_str(), texture.c_str(), synthesis.width, synthesis.height,

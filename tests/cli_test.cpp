@@ -455,6 +455,15 @@ TEST_F(Cli, AnalyzeRenderInfoCompareMorph)
     EXPECT_EQ(figure_image.width, 1024);
     EXPECT_GT(figure_image.height, 512 + 2 * 320);
 
+    // compare with an image in the texture's place: scored as it is (the photo with itself is 0
+    // on every metric).
+    const RunResult itself = stex({"compare", photo.string(), photo.string()});
+    expect_success(itself);
+    EXPECT_TRUE(contains(itself.out, "as it is")) << itself;
+    EXPECT_TRUE(contains(itself.out, "structure distance (Portilla-Simoncelli statistics; 0 = the photo's, 1 = its "
+                                     "random-phase noise's): 0\n"))
+        << itself;
+
     // morph with itself
     const fs::path morphed = dir / "morphed.stex";
     expect_success(stex({"morph", stex_path.string(), stex_path.string(), "--t", "0.5", "-o", morphed.string()}));
