@@ -336,9 +336,14 @@ TEST(ModelChoice, StructureDecidesOnlyAmongFitsNoWorseOnTheExistingTargets)
     const std::vector<double> six_term{0.5, 0.55};
     EXPECT_EQ(chosen_by_rule(scores), 1u);  // the penalty alone would take it
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);
-    // Within 10 % of the closest 2D distance, it is the choice.
+    // Within 10 % of the closest 2D distance, it is the choice; the closest is the plain fits'
+    // (a variant closer in 2D but not in structure does not tighten it).
     scores[1].polar_log_psd_db = 1.05;
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 1u);
+    scores.push_back(row("blend_contrast 4", 0.85, 1.0, 0.9, 0.38));
+    const std::vector<double> six_term3{0.5, 0.55, 0.45};
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term3, targets), 1u);
+    scores.pop_back();
     // A radial spectrum pushed off its target (the default's is on it) rules it out again.
     scores[1].radial_log_psd_db = 1.6;
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);

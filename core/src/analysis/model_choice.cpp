@@ -117,7 +117,7 @@ ModelScore score_render(const TextureDescription& description, const ComparisonR
 
 /// Whether `s` keeps every existing target the default choice `plain` keeps and, where `plain`
 /// misses one, is no further from it than the metrics' own noise (model_choice_tolerance), with its 2D
-/// spectrum within 10 % of `closest_2d` (the closest of the candidates on the W1 and false-colour
+/// spectrum within 10 % of `closest_2d` (the closest of the plain fits on the W1 and false-colour
 /// targets) or no further than `plain`'s: what "no worse on the existing targets" asks of a
 /// choice that also weighs structure (issue 33).
 bool no_worse_than(const ModelScore& s, const ModelScore& plain, double closest_2d, const FidelityTargets& targets)
@@ -180,9 +180,9 @@ std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
     double closest_2d = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < scores.size(); ++i) {
         const ModelScore& s = scores[i];
+        if (!s.variant.empty()) continue;  // the default's view: a variant must not tighten it
         if (s.w1_sigma <= targets.w1_sigma && s.false_colour_rate <= targets.false_colour_rate)
             closest_2d = std::min(closest_2d, s.polar_log_psd_db);
-        if (!s.variant.empty()) continue;
         plain_rows.push_back(i);
         plain_scores.push_back(s);
         plain_scores.back().penalty = penalties_without_structure[i];

@@ -34,7 +34,7 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 /// six-term penalties, one per score); then chosen_by_rule, by the scores' own (seven-term)
 /// penalties, over that choice and every row no worse than it on the six existing targets —
 /// each metric on its target where the default's is, else within model_choice_tolerance of the
-/// default's, and the 2D distance within model_choice_tolerance of the closest candidate's
+/// default's, and the 2D distance within model_choice_tolerance of the closest plain fit's
 /// among those on the W1 and false-colour targets (or no further than the default's). So the
 /// structure term decides only among textures that keep what the default's keeps.
 std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
