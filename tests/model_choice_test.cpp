@@ -350,6 +350,19 @@ TEST(ModelChoice, StructureDecidesOnlyAmongFitsNoWorseOnTheExistingTargets)
     // Where the default's is off that target too, within the metrics' noise of it is allowed.
     scores[0].radial_log_psd_db = 1.55;
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 1u);
+    // At the photo's full size it must pass again against the default's choice there.
+    std::vector<std::size_t> scored_at_full_size;
+    const auto full_size = [&](double variant_radial) {
+        return [&, variant_radial](std::size_t i) {
+            scored_at_full_size.push_back(i);
+            ModelScore s = scores[i];
+            s.radial_log_psd_db = i == 0 ? 1.2 : variant_radial;
+            return s;
+        };
+    };
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets, full_size(1.3)), 1u);
+    EXPECT_EQ(scored_at_full_size, (std::vector<std::size_t>{0, 1}));
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets, full_size(1.7)), 0u);  // off target there
 }
 
 // Issue 14's acceptance, on every shared photo (skipped without ../shared/exemplars): the model

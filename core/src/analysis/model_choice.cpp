@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <set>
 
 #include <tbb/parallel_for.h>
@@ -173,7 +174,7 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
 
 std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
                                       const std::vector<double>& penalties_without_structure,
-                                      const FidelityTargets& targets)
+                                      const FidelityTargets& targets, const ScoreAtFullSize& at_full_size)
 {
     std::vector<std::size_t> plain_rows;
     std::vector<ModelScore> plain_scores;
@@ -197,7 +198,21 @@ std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
             rows.push_back(i);
             allowed.push_back(scores[i]);
         }
-    return rows[chosen_by_rule(allowed)];
+    // The scoring renders are small (max_scoring_side): a row that passed there must pass again
+    // against the default's choice at the photo's full size, what `stex compare` and the user
+    // see (karst rock: radial 1.70 dB at full size where the default's is 1.45). A row that fails
+    // makes way for the next; after max_full_size_checks of them, the default's choice stays.
+    std::optional<ModelScore> plain_at_full_size;
+    for (int check = 0; check < max_full_size_checks; ++check) {
+        const std::size_t k = chosen_by_rule(allowed);
+        if (rows[k] == plain || !at_full_size) return rows[k];
+        if (!plain_at_full_size) plain_at_full_size = at_full_size(plain);
+        const ModelScore full = at_full_size(rows[k]);
+        if (no_worse_than(full, *plain_at_full_size, plain_at_full_size->polar_log_psd_db, targets)) return rows[k];
+        rows.erase(rows.begin() + std::ptrdiff_t(k));
+        allowed.erase(allowed.begin() + std::ptrdiff_t(k));
+    }
+    return plain;
 }
 
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
@@ -305,8 +320,14 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
         }
 
     TextureDescription result =
-        fits[options.structure_in_choice ? chosen_weighing_structure(scores, penalties_without_structure, targets)
-                                         : chosen_by_rule(scores)]
+        fits[options.structure_in_choice
+                 ? chosen_weighing_structure(scores, penalties_without_structure, targets,
+                                             [&](std::size_t row) {
+                                                 return score_against_photo(fits[row]->description, photo_side,
+                                                                            std::max(photo.width, photo.height),
+                                                                            targets);
+                                             })
+                 : chosen_by_rule(scores)]
             ->description;
     result.provenance.model_choice = scores;
     for (auto& [name, value] : result.provenance.options)

@@ -6,6 +6,7 @@
 #include <stochtex/metrics.h>
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace stochtex {
@@ -36,10 +37,16 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 /// each metric on its target where the default's is, else within model_choice_tolerance of the
 /// default's, and the 2D distance within model_choice_tolerance of the closest plain fit's
 /// among those on the W1 and false-colour targets (or no further than the default's). So the
-/// structure term decides only among textures that keep what the default's keeps.
+/// structure term decides only among textures that keep what the default's keeps. Where
+/// `at_full_size` is given (the row's score on a render of the photo's whole size), the row the
+/// rule keeps must also be no worse than the default's choice there (its 2D distance within
+/// model_choice_tolerance of the default's), else the next one is tried, at most
+/// max_full_size_checks of them, then the default's choice is kept.
+using ScoreAtFullSize = std::function<ModelScore(std::size_t row)>;
+constexpr int max_full_size_checks = 3;
 std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
                                       const std::vector<double>& penalties_without_structure,
-                                      const FidelityTargets& targets);
+                                      const FidelityTargets& targets, const ScoreAtFullSize& at_full_size = {});
 
 /// analyze() with options.model == automatic_model lands here.
 TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOptions& options,
