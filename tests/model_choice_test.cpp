@@ -347,6 +347,11 @@ TEST(ModelChoice, StructureDecidesOnlyAmongFitsNoWorseOnTheExistingTargets)
     // A radial spectrum pushed off its target (the default's is on it) rules it out again.
     scores[1].radial_log_psd_db = 1.6;
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);
+    // On its target the default's sets the bound at the target, not 10 % above the default's.
+    scores[0].radial_log_psd_db = 1.4;
+    scores[1].radial_log_psd_db = 1.52;
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 0u);
+    scores[1].radial_log_psd_db = 1.6;
     // Where the default's is off that target too, within the metrics' noise of it is allowed.
     scores[0].radial_log_psd_db = 1.55;
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets), 1u);
@@ -363,6 +368,18 @@ TEST(ModelChoice, StructureDecidesOnlyAmongFitsNoWorseOnTheExistingTargets)
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets, full_size(1.3)), 1u);
     EXPECT_EQ(scored_at_full_size, (std::vector<std::size_t>{0, 1}));
     EXPECT_EQ(chosen_weighing_structure(scores, six_term, targets, full_size(1.7)), 0u);  // off target there
+    // The rule decides among the rows ranked first by their full-size scores: a second variant,
+    // second at the scoring size, is much closer at full size.
+    scores.push_back(row("blend_contrast 4", 0.72, 1.0, 1.05, 0.25));
+    const std::vector<double> six_term4{0.5, 0.55, 0.55};
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term4, targets), 1u);
+    const auto second_closer = [&](std::size_t i) {
+        ModelScore s = scores[i];
+        s.radial_log_psd_db = 1.2;
+        if (i == 2) s.penalty = 0.5;
+        return s;
+    };
+    EXPECT_EQ(chosen_weighing_structure(scores, six_term4, targets, second_closer), 2u);
 }
 
 // Issue 14's acceptance, on every shared photo (skipped without ../shared/exemplars): the model

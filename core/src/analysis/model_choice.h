@@ -38,10 +38,10 @@ std::size_t chosen_by_rule(const std::vector<ModelScore>& scores);
 /// default's, and the 2D distance within model_choice_tolerance of the closest plain fit's
 /// among those on the W1 and false-colour targets (or no further than the default's). So the
 /// structure term decides only among textures that keep what the default's keeps. Where
-/// `at_full_size` is given (the row's score on a render of the photo's whole size), the row the
-/// rule keeps must also be no worse than the default's choice there (its 2D distance within
-/// model_choice_tolerance of the default's), else the next one is tried, at most
-/// max_full_size_checks of them, then the default's choice is kept.
+/// `at_full_size` is given (the row's score on a render of the photo's whole size), the default's
+/// choice and the max_full_size_checks rows the seven-term penalty ranks first are scored there;
+/// those no worse than the default's choice there (its 2D distance within model_choice_tolerance
+/// of the default's) stay, and chosen_by_rule decides among them by their full-size scores.
 using ScoreAtFullSize = std::function<ModelScore(std::size_t row)>;
 constexpr int max_full_size_checks = 3;
 std::size_t chosen_weighing_structure(const std::vector<ModelScore>& scores,
