@@ -420,8 +420,8 @@ std::string format_model_choice(const TextureDescription& description)
                   structure ? "seven" : "six", structure ? ", structure 0.25" : "", 100 * model_choice_tolerance);
     text += line;
     if (structure)
-        text += "      among the six-term choice and the rows no worse than it on any of the six targets, with a 2D "
-                "distance within 10 % of the closest\n";
+        text += "      among the six-term choice and the rows no worse than it on the six targets (2D within 10 % of "
+                "the closest plain fit), the first three scored again at the photo's size, where the rule decides\n";
     return text;
 }
 
