@@ -123,7 +123,7 @@ void AnalyzeCommand::add_options(CLI::App& a)
                "fidelity penalty, target 0.25; docs/metrics.md, Structure), and try tiling's sharper blends "
                "(blend contrast 4, 8) and, on photos 512 px across, a 512^2 exemplar. A row replaces the default's "
                "choice only where it is no worse on the six other targets, on the scoring render and at the "
-               "photo's full size. About 3x the analysis time");
+               "photo's full size. About 5-8x the analysis time");
     a.add_option("--knots", knots, "Knots of each histogram map")->check(CLI::Range(4, 64))->capture_default_str();
     a.add_option("--bands", bands, "Keep at most N finest bands (gabor: octaves) (0: all the photo supports)")
         ->check(CLI::Range(0, 24))->capture_default_str();
