@@ -85,13 +85,13 @@ namespace {
 /// score_against_photo, and into `without_structure` (where not null) the penalty the same
 /// report gets with the six terms alone.
 ModelScore score_render(const TextureDescription& description, const ComparisonReference& photo, int max_side,
-                        const FidelityTargets& targets, double* without_structure)
+                        const FidelityTargets& targets, int threads, double* without_structure)
 {
     RenderSettings settings;
     settings.width = std::min(photo.width(), max_side);
     settings.height = std::min(photo.height(), max_side);
     settings.units_per_pixel = 1.0 / description.pixels_per_unit;
-    settings.threads = 1;  // the candidates run side by side
+    settings.threads = threads;
     const Image synthesis = render(*make_texture(description), settings);
     const ComparisonReport report = compare_images(photo, synthesis);
     ModelScore score;
@@ -139,9 +139,9 @@ bool no_worse_than(const ModelScore& s, const ModelScore& plain, double closest_
 }  // namespace
 
 ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side,
-                               const FidelityTargets& targets)
+                               const FidelityTargets& targets, int threads)
 {
-    return score_render(description, photo, max_side, targets, nullptr);
+    return score_render(description, photo, max_side, targets, threads, nullptr);
 }
 
 std::size_t chosen_by_rule(const std::vector<ModelScore>& scores)
@@ -297,14 +297,14 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
                 }
                 Scored& fit = candidate.fits.emplace_back();
                 fit.description = analyze_one_model(photo, refit, nullptr, &photo_side);
-                fit.score = score_render(fit.description, photo_side, max_scoring_side, targets,
+                fit.score = score_render(fit.description, photo_side, max_scoring_side, targets, 1,
                                          &fit.penalty_without_structure);
                 fit.score.variant = label;
                 if (!options.structure_in_choice) continue;
                 for (FitVariant& variant : model.automatic_variants(fit.description, given_options)) {
                     Scored& varied = candidate.fits.emplace_back();
                     varied.description = std::move(variant.description);
-                    varied.score = score_render(varied.description, photo_side, max_scoring_side, targets,
+                    varied.score = score_render(varied.description, photo_side, max_scoring_side, targets, 1,
                                                 &varied.penalty_without_structure);
                     varied.score.variant = label + (label.empty() ? "" : ", ") + variant.label;
                 }
@@ -331,10 +331,10 @@ TextureDescription analyze_choosing_model(const Image& photo, const AnalysisOpti
     TextureDescription result =
         fits[options.structure_in_choice
                  ? chosen_weighing_structure(scores, penalties_without_structure, targets,
-                                             [&](std::size_t row) {
+                                             [&](std::size_t row) {  // one at a time: every core
                                                  return score_against_photo(fits[row]->description, photo_side,
                                                                             std::max(photo.width, photo.height),
-                                                                            targets);
+                                                                            targets, 0);
                                              })
                  : chosen_by_rule(scores)]
             ->description;

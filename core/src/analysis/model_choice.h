@@ -18,10 +18,11 @@ namespace stochtex {
 constexpr int max_scoring_side = 384;
 
 /// A fitted description's score as the choice measures it: its render (at the photo's pixel
-/// scale, at most max_side² pixels from the texture's origin, on one thread) against the whole
+/// scale, at most max_side² pixels from the texture's origin, on `threads` threads: 1 where
+/// candidates run side by side, 0 for all; the render does not depend on it) against the whole
 /// photo. Also what a model's fit uses to choose among its own candidates (FitInput::score).
 ModelScore score_against_photo(const TextureDescription& description, const ComparisonReference& photo, int max_side,
-                               const FidelityTargets& targets = {});
+                               const FidelityTargets& targets = {}, int threads = 1);
 
 /// The rule: the index of the score to keep of `scores` (not empty), the lowest penalty or,
 /// among those within model_choice_tolerance of it (differences the metrics' own noise makes),
